@@ -1,0 +1,215 @@
+//! The numeric vocabulary every noise kernel is written in.
+//!
+//! A kernel is written once, generic over [`Lanes`], and instantiated for
+//! `f64` (the reference-exact scalar API), `f32` (the scalar single-precision
+//! API) and [`F32x8`] (eight points at a time for the batch API). The trait is
+//! sealed: the set of lane types is closed, so kernels may rely on every
+//! operation being an IEEE-754 operation performed lane by lane, with no fused
+//! multiply-add and no reassociation. That is what makes `F32x8` lane *k*
+//! equal to the `f32` result bit for bit.
+//!
+//! Integer lanes ([`IntLanes`]) carry lattice coordinates and hashes. They are
+//! 32-bit and wrap on overflow in every build profile.
+
+mod scalar;
+mod x8;
+
+use core::fmt::Debug;
+use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+pub use x8::{F32x8, I32x8, M32x8};
+
+pub(crate) mod sealed {
+    pub trait Sealed {}
+}
+
+/// A scalar floating-point element type: `f32` or `f64`.
+pub trait Elem: sealed::Sealed + Copy + Send + Sync + PartialOrd + Debug + 'static {
+    /// Round an `f64` to this type (round to nearest even).
+    fn from_f64(x: f64) -> Self;
+    /// Widen to `f64` (exact).
+    fn to_f64(self) -> f64;
+}
+
+/// A fixed number of floating-point lanes, operated on element-wise.
+///
+/// Every method is an exact IEEE-754 operation per lane (or a documented
+/// exact integer conversion), so a kernel gives the same bits whatever the
+/// width of the lane type it is instantiated with.
+pub trait Lanes:
+    sealed::Sealed
+    + Copy
+    + Send
+    + Sync
+    + Debug
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// The element type of one lane.
+    type Elem: Elem;
+    /// Signed 32-bit integer lanes of the same width.
+    type Int: IntLanes<Mask = Self::Mask>;
+    /// A per-lane boolean.
+    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    /// Number of lanes.
+    const WIDTH: usize;
+
+    /// Every lane set to `x`.
+    fn splat(x: Self::Elem) -> Self;
+    /// A constant: `c` rounded to the element type, in every lane.
+    #[inline(always)]
+    fn cst(c: f64) -> Self {
+        Self::splat(Self::Elem::from_f64(c))
+    }
+    /// Lanes from a slice of exactly `WIDTH` elements.
+    fn from_slice(v: &[Self::Elem]) -> Self;
+    /// Lane `k`.
+    fn lane(self, k: usize) -> Self::Elem;
+
+    /// Largest integer not greater than each lane.
+    fn floor(self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    /// Lane-wise minimum (`self` when either is NaN is not promised; kernels avoid NaN here).
+    fn min(self, o: Self) -> Self;
+    /// Lane-wise maximum.
+    fn max(self, o: Self) -> Self;
+
+    /// `self < o`.
+    fn lt(self, o: Self) -> Self::Mask;
+    /// `self <= o`.
+    fn le(self, o: Self) -> Self::Mask;
+    /// `self > o`.
+    #[inline(always)]
+    fn gt(self, o: Self) -> Self::Mask {
+        o.lt(self)
+    }
+    /// `self >= o`.
+    #[inline(always)]
+    fn ge(self, o: Self) -> Self::Mask {
+        o.le(self)
+    }
+    /// Per lane: `a` where `m`, else `b`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+
+    /// Convert an integral value (e.g. the result of [`Lanes::floor`]) to an
+    /// integer, wrapping modulo 2³² (exact for |x| < 2⁶³; NaN gives 0).
+    fn to_int_wrapping(self) -> Self::Int;
+    /// Convert integers to floats (rounded to nearest for |i| > 2²⁴ in f32).
+    fn from_int(i: Self::Int) -> Self;
+    /// Per lane: `table[idx]`. Indices must be in range (kernels mask them).
+    fn gather(table: &[Self::Elem], idx: Self::Int) -> Self;
+
+    /// `self * self`.
+    #[inline(always)]
+    fn sq(self) -> Self {
+        self * self
+    }
+}
+
+/// Signed 32-bit integer lanes with wrapping arithmetic.
+pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
+    /// A per-lane boolean, shared with the float lanes of the same width.
+    type Mask: Copy;
+    /// Every lane set to `x`.
+    fn splat(x: i32) -> Self;
+    /// Lane `k`.
+    fn lane(self, k: usize) -> i32;
+    /// Wrapping addition.
+    fn add(self, o: Self) -> Self;
+    /// Wrapping subtraction.
+    fn sub(self, o: Self) -> Self;
+    /// Wrapping multiplication.
+    fn mul(self, o: Self) -> Self;
+    /// Bitwise and.
+    fn and(self, o: Self) -> Self;
+    /// Bitwise or.
+    fn or(self, o: Self) -> Self;
+    /// Bitwise exclusive or.
+    fn xor(self, o: Self) -> Self;
+    /// Shift left by `s` bits.
+    fn shl(self, s: u32) -> Self;
+    /// Logical (unsigned) shift right by `s` bits.
+    fn shr(self, s: u32) -> Self;
+    /// Euclidean remainder by a positive constant: the result is in `0..m`.
+    fn rem_euclid(self, m: i32) -> Self;
+    /// Signed `self == o`.
+    fn eq(self, o: Self) -> Self::Mask;
+    /// Signed `self < o`.
+    fn lt(self, o: Self) -> Self::Mask;
+    /// Per lane: `a` where `m`, else `b`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// Per lane: `table[idx]` widened to i32. Indices must be in range.
+    fn gather_u8(table: &[u8], idx: Self) -> Self;
+    /// Per lane: `table[idx]`. Indices must be in range.
+    fn gather_i32(table: &[i32], idx: Self) -> Self;
+
+    /// `self & m` for a constant.
+    #[inline(always)]
+    fn and_c(self, m: i32) -> Self {
+        self.and(Self::splat(m))
+    }
+    /// `self + c` for a constant.
+    #[inline(always)]
+    fn add_c(self, c: i32) -> Self {
+        self.add(Self::splat(c))
+    }
+    /// Lanes where bit `b` is set.
+    #[inline(always)]
+    fn bit(self, b: u32) -> Self::Mask {
+        self.and_c(1 << b).eq(Self::splat(1 << b))
+    }
+}
+
+/// Linear interpolation `a + t·(b − a)`, the form every reference uses
+/// (Perlin 1985/2002, Gustavson). Not `a·(1−t) + b·t`, which rounds differently.
+#[inline(always)]
+pub fn lerp<L: Lanes>(t: L, a: L, b: L) -> L {
+    a + t * (b - a)
+}
+
+/// Split coordinates into the integer cell (wrapped to 32 bits) and the
+/// fractional position inside it, `x − floor(x)`.
+#[inline(always)]
+pub fn cell<L: Lanes, const D: usize>(p: [L; D]) -> ([L::Int; D], [L; D]) {
+    let mut c = [L::Int::splat(0); D];
+    let mut f = p;
+    for d in 0..D {
+        let fl = p[d].floor();
+        c[d] = fl.to_int_wrapping();
+        f[d] = p[d] - fl;
+    }
+    (c, f)
+}
+
+/// Mathematical helpers that need `std` or `libm`.
+pub(crate) mod math {
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub fn floor32(x: f32) -> f32 {
+        x.floor()
+    }
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub fn floor64(x: f64) -> f64 {
+        x.floor()
+    }
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub fn sqrt32(x: f32) -> f32 {
+        x.sqrt()
+    }
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub fn sqrt64(x: f64) -> f64 {
+        x.sqrt()
+    }
+    #[cfg(not(feature = "std"))]
+    pub use libm::{floor as floor64, floorf as floor32, sqrt as sqrt64, sqrtf as sqrt32};
+}

@@ -1,0 +1,185 @@
+//! `f32` and `f64` as one-lane [`Lanes`], with `i32` as their integer lanes.
+
+use super::{math, sealed::Sealed, Elem, IntLanes, Lanes};
+
+impl Sealed for f32 {}
+impl Sealed for f64 {}
+impl Sealed for i32 {}
+
+impl Elem for f32 {
+    #[inline(always)]
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+}
+
+impl Elem for f64 {
+    #[inline(always)]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+}
+
+impl IntLanes for i32 {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(x: i32) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn lane(self, _k: usize) -> i32 {
+        self
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self.wrapping_add(o)
+    }
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        self.wrapping_sub(o)
+    }
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        self.wrapping_mul(o)
+    }
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        self & o
+    }
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        self | o
+    }
+    #[inline(always)]
+    fn xor(self, o: Self) -> Self {
+        self ^ o
+    }
+    #[inline(always)]
+    fn shl(self, s: u32) -> Self {
+        self.wrapping_shl(s)
+    }
+    #[inline(always)]
+    fn shr(self, s: u32) -> Self {
+        ((self as u32).wrapping_shr(s)) as i32
+    }
+    #[inline(always)]
+    fn rem_euclid(self, m: i32) -> Self {
+        i32::rem_euclid(self, m)
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> bool {
+        self == o
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> bool {
+        self < o
+    }
+    #[inline(always)]
+    fn select(m: bool, a: Self, b: Self) -> Self {
+        if m {
+            a
+        } else {
+            b
+        }
+    }
+    #[inline(always)]
+    fn gather_u8(table: &[u8], idx: Self) -> Self {
+        table[idx as usize] as i32
+    }
+    #[inline(always)]
+    fn gather_i32(table: &[i32], idx: Self) -> Self {
+        table[idx as usize]
+    }
+}
+
+macro_rules! scalar_lanes {
+    ($t:ty, $floor:path, $sqrt:path) => {
+        impl Lanes for $t {
+            type Elem = $t;
+            type Int = i32;
+            type Mask = bool;
+            const WIDTH: usize = 1;
+
+            #[inline(always)]
+            fn splat(x: $t) -> Self {
+                x
+            }
+            #[inline(always)]
+            fn from_slice(v: &[$t]) -> Self {
+                v[0]
+            }
+            #[inline(always)]
+            fn lane(self, _k: usize) -> $t {
+                self
+            }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                $floor(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline(always)]
+            fn min(self, o: Self) -> Self {
+                if o < self {
+                    o
+                } else {
+                    self
+                }
+            }
+            #[inline(always)]
+            fn max(self, o: Self) -> Self {
+                if o > self {
+                    o
+                } else {
+                    self
+                }
+            }
+            #[inline(always)]
+            fn lt(self, o: Self) -> bool {
+                self < o
+            }
+            #[inline(always)]
+            fn le(self, o: Self) -> bool {
+                self <= o
+            }
+            #[inline(always)]
+            fn select(m: bool, a: Self, b: Self) -> Self {
+                if m {
+                    a
+                } else {
+                    b
+                }
+            }
+            #[inline(always)]
+            fn to_int_wrapping(self) -> i32 {
+                // `as i64` saturates (NaN → 0); the second cast wraps.
+                self as i64 as i32
+            }
+            #[inline(always)]
+            fn from_int(i: i32) -> Self {
+                i as $t
+            }
+            #[inline(always)]
+            fn gather(table: &[$t], idx: i32) -> Self {
+                table[idx as usize]
+            }
+        }
+    };
+}
+
+scalar_lanes!(f32, math::floor32, math::sqrt32);
+scalar_lanes!(f64, math::floor64, math::sqrt64);

@@ -1,0 +1,66 @@
+//! # noiselab
+//!
+//! Procedural noise that is exactly what the papers and reference programs
+//! say it is, in `f64`, `f32` and SIMD batches that agree bit for bit.
+//!
+//! ```
+//! use noiselab::{Noise, Improved, Grid};
+//!
+//! // Perlin's improved noise, seed 0 = his reference permutation.
+//! let noise = Improved::new(0);
+//! let v = noise.get([3.14, 42.0, 7.0]);
+//! assert_eq!(v, 0.13691995878400012); // Perlin's ImprovedNoise.java gives exactly this
+//!
+//! // A 256×256 slice at z = 0.5, 32 samples per lattice cell, eight lanes at a time.
+//! let grid = Grid::new([0.0, 0.0, 0.5], [1.0 / 32.0, 1.0 / 32.0, 0.0], [256, 256, 1]);
+//! let mut image = vec![0f32; grid.len()];
+//! noise.fill_grid(&grid, &mut image).unwrap();
+//! assert_eq!(image[1000], noise.get_f32(grid.point(1000))); // batch == scalar f32, bit for bit
+//! ```
+//!
+//! ## Design
+//!
+//! Every kind implements one trait, [`Noise`], whose single method
+//! [`Noise::sample`] is generic over a sealed lane type ([`lanes::Lanes`]):
+//! `f64`, `f32` or [`lanes::F32x8`]. So each algorithm is written once and
+//! serves the scalar APIs, the batch APIs ([`Noise::fill_grid`],
+//! [`Noise::fill_points`]) and, later, other backends. See `ARCHITECTURE.md`.
+//!
+//! ## Kinds and ranges
+//!
+//! | kind | paper | dims | range |
+//! |---|---|---|---|
+//! | [`Classic`] | Perlin 1985 | 1–3 | see type docs |
+//! | [`Improved`] | Perlin 2002 | 1–4 | see type docs |
+//! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 1–4 | see type docs |
+//! | [`SimplexN`] | Perlin 2001 | any | see type docs |
+//! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
+//! | [`Modified`] | Olano 2005 | 1–4 | see type docs |
+//!
+//! ## Special inputs
+//!
+//! NaN in any coordinate gives NaN. ±∞ gives NaN (the position inside a cell
+//! is undefined). Lattice cell indices are taken modulo 2³², so coordinates
+//! beyond ±2³¹ cells never panic or overflow; they alias cells 2³² apart.
+//! In `f32`, coordinates beyond 2²⁴ have no fractional part left, so gradient
+//! kinds return 0 there.
+
+#![cfg_attr(not(feature = "std"), no_std)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+extern crate alloc;
+
+pub mod grid;
+pub mod hash;
+pub mod kinds;
+pub mod lanes;
+mod noise;
+
+pub use grid::{Grid, GridError, SimdLevel};
+pub use kinds::classic::Classic;
+pub use kinds::improved::{Improved, ImprovedVariant};
+pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
+pub use kinds::simplex::Simplex;
+pub use kinds::simplex_n::SimplexN;
+pub use kinds::value::Value;
+pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};

@@ -1,0 +1,117 @@
+//! The one trait every noise implements, and its derivative companion.
+
+use crate::grid::{self, Grid, GridError};
+use crate::lanes::{F32x8, Lanes};
+
+/// A coherent-noise field over `D`-dimensional space.
+///
+/// Implementations are immutable plain data (every noise is `Send + Sync`,
+/// cheap to clone or share by reference), and one unit of input space is one
+/// lattice cell for every kind. The single required method is written once,
+/// generic over the lane type, and serves every API:
+///
+/// * [`Noise::get`]: one point in `f64` (the reference-exact path);
+/// * [`Noise::get_f32`]: one point in `f32`;
+/// * [`Noise::fill_grid`] and [`Noise::fill_points`]: batches in `f32`,
+///   evaluated eight points at a time with [`F32x8`], equal to `get_f32`
+///   bit for bit.
+pub trait Noise<const D: usize>: Send + Sync {
+    /// The field at `p`, one point per lane.
+    fn sample<L: Lanes>(&self, p: [L; D]) -> L;
+
+    /// The field at one point, in double precision.
+    #[inline]
+    fn get(&self, p: [f64; D]) -> f64 {
+        self.sample::<f64>(p)
+    }
+
+    /// The field at one point, in single precision.
+    #[inline]
+    fn get_f32(&self, p: [f32; D]) -> f32 {
+        self.sample::<f32>(p)
+    }
+
+    /// Fill `out` with the field on a regular grid, axis 0 fastest.
+    ///
+    /// `out.len()` must equal `grid.len()`. Values equal [`Noise::get_f32`] at
+    /// each point ([`Grid::point`]) bit for bit.
+    fn fill_grid(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError>
+    where
+        Self: Sized,
+    {
+        grid::fill_grid(self, grid, out)
+    }
+
+    /// Fill `out[i]` with the field at `points[i]`.
+    ///
+    /// Panics if the slices differ in length.
+    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32])
+    where
+        Self: Sized,
+    {
+        grid::fill_points(self, points, out)
+    }
+}
+
+/// A noise with an analytic gradient.
+pub trait NoiseGradient<const D: usize>: Noise<D> {
+    /// The value and the gradient `(∂/∂x₀, …, ∂/∂x_{D−1})` at `p`.
+    ///
+    /// The value equals [`Noise::sample`] at the same point up to rounding
+    /// (it may be computed along a different path).
+    fn sample_gradient<L: Lanes>(&self, p: [L; D]) -> (L, [L; D]);
+
+    /// Value and gradient at one point, in double precision.
+    #[inline]
+    fn get_gradient(&self, p: [f64; D]) -> (f64, [f64; D]) {
+        self.sample_gradient::<f64>(p)
+    }
+}
+
+impl<N: Noise<D>, const D: usize> Noise<D> for &N {
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, p: [L; D]) -> L {
+        (**self).sample(p)
+    }
+}
+
+impl<N: NoiseGradient<D>, const D: usize> NoiseGradient<D> for &N {
+    #[inline(always)]
+    fn sample_gradient<L: Lanes>(&self, p: [L; D]) -> (L, [L; D]) {
+        (**self).sample_gradient(p)
+    }
+}
+
+/// The object-safe face of [`Noise`], for pipelines chosen at run time
+/// (the command line): one virtual call per point or per batch.
+pub trait DynNoise<const D: usize>: Send + Sync {
+    /// [`Noise::get`].
+    fn get(&self, p: [f64; D]) -> f64;
+    /// [`Noise::get_f32`].
+    fn get_f32(&self, p: [f32; D]) -> f32;
+    /// [`Noise::fill_grid`].
+    fn fill_grid(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError>;
+    /// [`Noise::fill_points`].
+    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]);
+}
+
+impl<N: Noise<D>, const D: usize> DynNoise<D> for N {
+    fn get(&self, p: [f64; D]) -> f64 {
+        Noise::get(self, p)
+    }
+    fn get_f32(&self, p: [f32; D]) -> f32 {
+        Noise::get_f32(self, p)
+    }
+    fn fill_grid(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError> {
+        Noise::fill_grid(self, grid, out)
+    }
+    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]) {
+        Noise::fill_points(self, points, out)
+    }
+}
+
+/// Evaluate eight points at once (a building block for custom batch loops).
+#[inline]
+pub fn sample_x8<N: Noise<D>, const D: usize>(noise: &N, p: [F32x8; D]) -> F32x8 {
+    noise.sample(p)
+}
