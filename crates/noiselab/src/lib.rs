@@ -64,3 +64,8 @@ pub use kinds::simplex::Simplex;
 pub use kinds::simplex_n::SimplexN;
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};
+
+/// The README's code blocks, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

@@ -27,8 +27,10 @@ pub enum ImprovedVariant {
 /// reference permutation.
 ///
 /// * Seed 0 is the reference permutation; other seeds shuffle it.
-/// * Output is not rescaled, as in the reference. Ranges (measured bounds,
-///   tested): 1D within ±0.5, 2D within ±1.0, 3D within ±1.04, 4D within ±1.1.
+/// * Output is not rescaled, as in the reference. Documented ranges (tested
+///   on random points; the largest |value| found by hill climbing from 2,000
+///   starts on seeds 0–4 is in brackets): 1D within ±0.5 \[0.5\], 2D within
+///   ±1.0 \[1.0\], 3D within ±1.04 \[1.005\], 4D within ±1.3 \[1.235\].
 /// * The 4D gradient follows Perlin's posted code, quirk included: its
 ///   `switch` lists the triple (y, z, w) for both case 0 (commented
 ///   "X,Y,Z") and case 3, so half of the 32 gradients have no x component.
