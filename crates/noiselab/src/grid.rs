@@ -9,6 +9,7 @@
 
 use crate::lanes::{F32x8, Lanes};
 use crate::noise::Noise;
+use alloc::vec::Vec;
 use core::fmt;
 
 /// A regular grid of sample points: point `(i₀, i₁, …)` lies at
@@ -106,7 +107,8 @@ pub enum SimdLevel {
 impl SimdLevel {
     /// Levels this CPU can run, lowest first.
     pub fn available() -> Vec<SimdLevel> {
-        let mut v = vec![SimdLevel::Baseline];
+        #[cfg_attr(not(all(feature = "std", target_arch = "x86_64")), allow(unused_mut))]
+        let mut v = Vec::from([SimdLevel::Baseline]);
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         {
             if std::arch::is_x86_feature_detected!("avx2") {
