@@ -1,1 +1,148 @@
-fn main() {}
+//! `noiselab`: sample and render procedural noise from the command line.
+
+mod output;
+mod registry;
+mod render;
+mod sample;
+
+use clap::{Args, Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(name = "noiselab", version, about = "Procedural noise, reference-exact: sample values, render images")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List the noise kinds with their dimensions and variants.
+    List,
+    /// Read points from standard input (one per line, coordinates separated by
+    /// commas or spaces) and print one value per line.
+    #[command(allow_negative_numbers = true)]
+    Sample(SampleArgs),
+    /// Render a 2D image (or a slice of a higher-dimensional noise) to a file.
+    #[command(allow_negative_numbers = true)]
+    Render(RenderArgs),
+}
+
+/// Options shared by every command that builds a noise.
+#[derive(Args, Debug, Clone)]
+pub struct NoiseArgs {
+    /// Noise kind (see `noiselab list`).
+    pub kind: String,
+    /// Number of dimensions (default: the kind's usual one, 3 for most).
+    #[arg(long)]
+    pub dims: Option<usize>,
+    /// Seed; 0 is the published reference.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Kind-specific variant (see `noiselab list`).
+    #[arg(long)]
+    pub variant: Option<String>,
+}
+
+/// Arithmetic precision of `sample`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Precision {
+    /// Double precision: the reference-exact path.
+    F64,
+    /// Single precision.
+    F32,
+}
+
+#[derive(Args, Debug)]
+pub struct SampleArgs {
+    #[command(flatten)]
+    pub noise: NoiseArgs,
+    /// Arithmetic precision.
+    #[arg(long, value_enum, default_value_t = Precision::F64)]
+    pub precision: Precision,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub noise: NoiseArgs,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "512x512", value_parser = render::parse_size)]
+    pub size: (usize, usize),
+    /// Pixels per lattice cell (PX): pixel (row j, column i) holds noise(X + i·(1/PX), Y + j·(1/PX), …).
+    #[arg(long, default_value_t = 32.0, value_parser = render::parse_scale)]
+    pub scale: f64,
+    /// Noise coordinates of pixel (0, 0), X,Y.
+    #[arg(long, default_value = "0,0", allow_hyphen_values = true, value_parser = render::parse_pair)]
+    pub origin: (f64, f64),
+    /// Coordinates of the slice for 3D and 4D noise, Z[,W,…].
+    #[arg(long, allow_hyphen_values = true, value_parser = render::parse_slice)]
+    pub slice: Option<render::Slice>,
+    /// Bits per PNG sample (8 or 16).
+    #[arg(long, default_value_t = 8, value_parser = render::parse_bits)]
+    pub bits: u8,
+    /// Output file: .png (grey, mapped from the kind's range), .npy or .f32 (exact float32 values).
+    #[arg(short, long)]
+    pub output: std::path::PathBuf,
+    /// Overwrite an existing output file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                let _ = e.print();
+                return ExitCode::from(2);
+            }
+            // One line, as for every other error.
+            let text = e.render().to_string();
+            let first = text.lines().next().unwrap_or("invalid arguments").trim_start_matches("error: ");
+            eprintln!("noiselab: {first} (see --help)");
+            return ExitCode::from(2);
+        }
+    };
+    let result = match cli.command {
+        Command::List => {
+            list();
+            Ok(())
+        }
+        Command::Sample(args) => sample::run(&args),
+        Command::Render(args) => render::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(msg) => {
+            eprintln!("noiselab: {msg}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn list() {
+    for k in registry::KINDS {
+        println!("{:<10} dims {}..={} (default {})  {}", k.name, k.dims.start(), k.dims.end(), k.default_dims, k.summary);
+        for (i, (name, what)) in k.variants.iter().enumerate() {
+            let default = if i == 0 { " (default)" } else { "" };
+            println!("{:<12}--variant {name}{default}: {what}", "");
+        }
+    }
+}
+
+impl NoiseArgs {
+    /// Resolve the kind and build the noise, validating every parameter.
+    pub fn build(&self) -> Result<(&'static registry::KindSpec, registry::Field, usize), String> {
+        let spec = registry::find(&self.kind)?;
+        let dims = self.dims.unwrap_or(spec.default_dims);
+        let params = registry::Params { dims, seed: self.seed, variant: self.variant.clone() };
+        let field = spec.build(&params)?;
+        Ok((spec, field, dims))
+    }
+}

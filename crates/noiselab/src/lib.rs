@@ -30,12 +30,11 @@
 //!
 //! | kind | paper | dims | range |
 //! |---|---|---|---|
-//! | [`Classic`] | Perlin 1985 | 1–3 | see type docs |
-//! | [`Improved`] | Perlin 2002 | 1–4 | see type docs |
-//! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 1–4 | see type docs |
-//! | [`SimplexN`] | Perlin 2001 | any | see type docs |
+//! | [`Improved`] | Perlin 2002 | 1–4 | 1D ±0.5, 2D ±1, 3D ±1.04, 4D ±1.3 |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
-//! | [`Modified`] | Olano 2005 | 1–4 | see type docs |
+//!
+//! Classic (1985), simplex, N-dimensional simplex and Olano's modified noise
+//! are planned (issue 2) and not yet implemented.
 //!
 //! ## Special inputs
 //!
@@ -57,11 +56,7 @@ pub mod lanes;
 mod noise;
 
 pub use grid::{Grid, GridError, SimdLevel};
-pub use kinds::classic::Classic;
 pub use kinds::improved::{Improved, ImprovedVariant};
-pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
-pub use kinds::simplex::Simplex;
-pub use kinds::simplex_n::SimplexN;
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};
 

@@ -1,10 +1,6 @@
 //! The noise kinds, one module each, and the lattice machinery they share.
 
-pub mod classic;
 pub mod improved;
-pub mod modified;
-pub mod simplex;
-pub mod simplex_n;
 pub mod value;
 
 use crate::lanes::{lerp, Lanes};

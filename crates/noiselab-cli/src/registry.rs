@@ -1,0 +1,163 @@
+//! The one registry of noise kinds: every command (`sample`, `render`,
+//! `list`, the help text) is driven from this table, so adding a kind here
+//! adds it everywhere.
+
+use noiselab::{DynNoise, Grid, GridError, Improved, ImprovedVariant, Value};
+use std::ops::RangeInclusive;
+
+/// What a user chose for a kind.
+#[derive(Clone, Debug)]
+pub struct Params {
+    pub dims: usize,
+    pub seed: u32,
+    pub variant: Option<String>,
+}
+
+/// One registered kind.
+pub struct KindSpec {
+    pub name: &'static str,
+    pub summary: &'static str,
+    pub dims: RangeInclusive<usize>,
+    pub default_dims: usize,
+    /// Variant names with a description; the first is the default.
+    pub variants: &'static [(&'static str, &'static str)],
+    /// The documented output range per dimension, used to map values to pixels.
+    pub range: fn(usize) -> (f64, f64),
+    build: fn(&Params, &str) -> Field,
+}
+
+/// A noise of run-time dimension.
+pub enum Field {
+    D1(Box<dyn DynNoise<1>>),
+    D2(Box<dyn DynNoise<2>>),
+    D3(Box<dyn DynNoise<3>>),
+    D4(Box<dyn DynNoise<4>>),
+    D5(Box<dyn DynNoise<5>>),
+    D6(Box<dyn DynNoise<6>>),
+    D7(Box<dyn DynNoise<7>>),
+    D8(Box<dyn DynNoise<8>>),
+}
+
+/// Highest dimension the command line offers.
+pub const MAX_DIMS: usize = 8;
+
+macro_rules! with_field {
+    ($field:expr, $n:ident, $d:ident => $body:expr) => {
+        match $field {
+            Field::D1($n) => { const $d: usize = 1; $body }
+            Field::D2($n) => { const $d: usize = 2; $body }
+            Field::D3($n) => { const $d: usize = 3; $body }
+            Field::D4($n) => { const $d: usize = 4; $body }
+            Field::D5($n) => { const $d: usize = 5; $body }
+            Field::D6($n) => { const $d: usize = 6; $body }
+            Field::D7($n) => { const $d: usize = 7; $body }
+            Field::D8($n) => { const $d: usize = 8; $body }
+        }
+    };
+}
+
+fn array<T: Copy + Default, const D: usize>(v: &[T]) -> [T; D] {
+    let mut a = [T::default(); D];
+    a.copy_from_slice(v);
+    a
+}
+
+impl Field {
+    /// Value at `p` (length = dims) in double precision.
+    pub fn get(&self, p: &[f64]) -> f64 {
+        with_field!(self, n, D => n.get(array::<f64, D>(p)))
+    }
+
+    /// Value at `p` (length = dims) in single precision.
+    pub fn get_f32(&self, p: &[f32]) -> f32 {
+        with_field!(self, n, D => n.get_f32(array::<f32, D>(p)))
+    }
+
+    /// Fill a grid given per-axis slices (length = dims).
+    pub fn fill_grid(&self, origin: &[f64], step: &[f64], size: &[usize], out: &mut [f32]) -> Result<(), GridError> {
+        with_field!(self, n, D => n.fill_grid(&Grid::new(array(origin), array(step), array(size)), out))
+    }
+}
+
+macro_rules! field {
+    ($noise:expr, $dims:expr, [$($d:literal => $v:ident),*]) => {
+        match $dims {
+            $($d => Field::$v(Box::new($noise)),)*
+            d => unreachable!("dims {d} validated against the registry"),
+        }
+    };
+}
+
+fn improved(p: &Params, variant: &str) -> Field {
+    let v = if variant == "2002" { ImprovedVariant::Original2002 } else { ImprovedVariant::Current };
+    field!(Improved::new(p.seed).with_variant(v), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+}
+
+
+
+
+fn value(p: &Params, _: &str) -> Field {
+    field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+}
+
+
+/// Every kind, in the order `list` shows them.
+pub static KINDS: &[KindSpec] = &[
+    KindSpec {
+        name: "improved",
+        summary: "Perlin 2002 improved noise (quintic fade, edge gradients), reference-exact",
+        dims: 1..=4,
+        default_dims: 3,
+        variants: &[
+            ("current", "the reference gradient as it stands today"),
+            ("2002", "the gradient as first published in 2002"),
+        ],
+        range: |_| (-1.0, 1.0),
+        build: improved,
+    },
+    KindSpec {
+        name: "value",
+        summary: "lattice value noise with quintic interpolation",
+        dims: 1..=4,
+        default_dims: 3,
+        variants: &[],
+        range: |_| (-1.0, 1.0),
+        build: value,
+    },
+];
+
+/// Look a kind up by name.
+pub fn find(name: &str) -> Result<&'static KindSpec, String> {
+    KINDS.iter().find(|k| k.name == name).ok_or_else(|| {
+        let names: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
+        format!("unknown kind '{name}' (known: {})", names.join(", "))
+    })
+}
+
+impl KindSpec {
+    /// Validate `params` and build the noise.
+    pub fn build(&self, params: &Params) -> Result<Field, String> {
+        if !self.dims.contains(&params.dims) {
+            return Err(format!(
+                "--dims for {} must be {}..={}, got {}",
+                self.name,
+                self.dims.start(),
+                self.dims.end(),
+                params.dims
+            ));
+        }
+        let variant = match (&params.variant, self.variants) {
+            (None, []) => "",
+            (None, v) => v[0].0,
+            (Some(name), []) => return Err(format!("{} has no variants, got --variant {name}", self.name)),
+            (Some(name), v) => match v.iter().find(|(n, _)| n == name) {
+                Some((n, _)) => n,
+                None => {
+                    let names: Vec<&str> = v.iter().map(|(n, _)| *n).collect();
+                    return Err(format!("--variant for {} must be one of {}, got {name}", self.name, names.join(", ")));
+                }
+            },
+        };
+        Ok((self.build)(params, variant))
+    }
+}

@@ -1,0 +1,129 @@
+//! `noiselab render`: a 2D window of a noise, written atomically.
+
+use crate::output::{Format, Image};
+use crate::RenderArgs;
+
+/// Most pixels one render may have (1 GiB of f32 values).
+const MAX_PIXELS: usize = 1 << 28;
+
+pub fn run(args: &RenderArgs) -> Result<(), String> {
+    let (spec, field, dims) = args.noise.build()?;
+    let format = Format::from_path(&args.output)?;
+    let (width, height) = args.size;
+    let pixels = width.checked_mul(height).filter(|&n| n <= MAX_PIXELS).ok_or_else(|| {
+        format!("--size {width}x{height} has more than {MAX_PIXELS} pixels")
+    })?;
+    let slice = args.slice.clone().map(|s| s.0).unwrap_or_default();
+    if slice.len() > dims.saturating_sub(2) {
+        return Err(format!(
+            "--slice gives {} coordinate(s) but {}D noise has {} axis(es) beyond x and y",
+            slice.len(),
+            dims,
+            dims.saturating_sub(2)
+        ));
+    }
+    // Open the destination first, so a bad path fails before any work.
+    let pending = crate::output::Pending::create(&args.output, args.force)?;
+
+    // Pixel (row j, column i) = noise(X + i·(1/PX), Y + j·(1/PX), slice…).
+    let step = 1.0 / args.scale;
+    let mut values = vec![0f32; pixels];
+    if dims == 1 {
+        // A 1D noise varies along x only: every row is the same.
+        let mut row = vec![0f32; width];
+        field.fill_grid(&[args.origin.0], &[step], &[width], &mut row).map_err(|e| e.to_string())?;
+        for r in values.chunks_mut(width) {
+            r.copy_from_slice(&row);
+        }
+    } else {
+        let mut origin = vec![args.origin.0, args.origin.1];
+        origin.extend(slice.iter().copied());
+        origin.resize(dims, 0.0);
+        let mut steps = vec![step, step];
+        steps.resize(dims, 0.0);
+        let mut size = vec![width, height];
+        size.resize(dims, 1);
+        field.fill_grid(&origin, &steps, &size, &mut values).map_err(|e| e.to_string())?;
+    }
+    let image = Image { width, height, values: &values, range: (spec.range)(dims) };
+    pending.finish(|w| format.write(w, &image, args.bits))
+}
+
+/// `WIDTHxHEIGHT`, both at least 1.
+pub fn parse_size(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{s}' is not a size like 512x512");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: usize = w.trim().parse().map_err(|_| bad())?;
+    let h: usize = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(format!("size must be at least 1x1, got {s}"));
+    }
+    Ok((w, h))
+}
+
+fn finite(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("'{}' is not a finite number", s.trim())),
+    }
+}
+
+/// PNG bits per sample: 8 or 16.
+pub fn parse_bits(s: &str) -> Result<u8, String> {
+    match s.trim() {
+        "8" => Ok(8),
+        "16" => Ok(16),
+        _ => Err(format!("bits must be 8 or 16, got {s}")),
+    }
+}
+
+/// Pixels per cell: finite and positive.
+pub fn parse_scale(s: &str) -> Result<f64, String> {
+    let v = finite(s)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("scale must be positive, got {s}"))
+    }
+}
+
+/// `X,Y`.
+pub fn parse_pair(s: &str) -> Result<(f64, f64), String> {
+    match parse_list(s)?.as_slice() {
+        [x, y] => Ok((*x, *y)),
+        _ => Err(format!("'{s}' is not a pair like 0,0")),
+    }
+}
+
+/// Slice coordinates beyond x and y (a newtype: clap treats a bare `Vec` as
+/// a multi-valued option).
+#[derive(Clone, Debug)]
+pub struct Slice(pub Vec<f64>);
+
+/// `Z[,W,…]`.
+pub fn parse_slice(s: &str) -> Result<Slice, String> {
+    parse_list(s).map(Slice)
+}
+
+/// Comma-separated finite numbers.
+pub fn parse_list(s: &str) -> Result<Vec<f64>, String> {
+    s.split(',').map(finite).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_arguments() {
+        assert_eq!(parse_size("640x480").unwrap(), (640, 480));
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("10").is_err());
+        assert!(parse_scale("0").is_err());
+        assert!(parse_scale("-3").is_err());
+        assert!(parse_scale("nan").is_err());
+        assert_eq!(parse_pair("1.5,-2").unwrap(), (1.5, -2.0));
+        assert!(parse_pair("1").is_err());
+        assert_eq!(parse_list("0.5,2").unwrap(), vec![0.5, 2.0]);
+    }
+}

@@ -1,0 +1,61 @@
+//! `noiselab sample`: points on standard input, values on standard output.
+
+use crate::{Precision, SampleArgs};
+use std::io::{BufRead, BufWriter, Write};
+
+pub fn run(args: &SampleArgs) -> Result<(), String> {
+    let (_, field, dims) = args.noise.build()?;
+    let stdin = std::io::stdin();
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let io_err = |e: std::io::Error| format!("writing standard output: {e}");
+    for (number, line) in stdin.lock().lines().enumerate() {
+        let line = line.map_err(|e| format!("reading standard input: {e}"))?;
+        let fields = split(&line);
+        let result = match args.precision {
+            Precision::F64 => parse_point::<f64>(&fields, dims).map(|p| field.get(&p).to_string()),
+            Precision::F32 => parse_point::<f32>(&fields, dims).map(|p| field.get_f32(&p).to_string()),
+        };
+        match result {
+            Ok(v) => writeln!(out, "{v}").map_err(io_err)?,
+            Err(why) => {
+                // Values already computed stay printed; nothing after this line is.
+                out.flush().map_err(io_err)?;
+                return Err(format!("line {}: {why}", number + 1));
+            }
+        }
+    }
+    out.flush().map_err(io_err)
+}
+
+/// Coordinates separated by commas and/or whitespace.
+fn split(line: &str) -> Vec<&str> {
+    line.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).collect()
+}
+
+fn parse_point<T: std::str::FromStr>(fields: &[&str], dims: usize) -> Result<Vec<T>, String> {
+    if fields.len() != dims {
+        return Err(format!("expected {dims} coordinates, got {}", fields.len()));
+    }
+    fields.iter().map(|s| s.parse::<T>().map_err(|_| format!("'{s}' is not a number"))).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn splits_on_commas_and_spaces() {
+        assert_eq!(split(" 1.5, -2  3e1\t4 "), vec!["1.5", "-2", "3e1", "4"]);
+        assert_eq!(split("1,,2"), vec!["1", "2"]);
+    }
+
+    #[test]
+    fn parses_exact_counts_only() {
+        assert_eq!(parse_point::<f64>(&["1", "2"], 2).unwrap(), vec![1.0, 2.0]);
+        assert!(parse_point::<f64>(&["1"], 2).is_err());
+        assert!(parse_point::<f64>(&["1", "x"], 2).unwrap_err().contains("'x'"));
+        // NaN and infinities are numbers: the library defines their result.
+        assert!(parse_point::<f64>(&["nan", "inf"], 2).is_ok());
+    }
+}

@@ -1,0 +1,198 @@
+//! Properties every kind must have, run over every kind and dimension:
+//! batch == scalar f32 bit for bit at every instruction-set level, the
+//! documented range, and the special-input contract (NaN, ±∞, huge values).
+
+use noiselab::grid::{fill_grid_at, fill_points_at};
+use noiselab::hash::SplitMix64;
+use noiselab::{Grid, Improved, ImprovedVariant, Noise, SimdLevel, Value};
+
+/// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
+/// documented range (the range each type's docs promise).
+macro_rules! for_every_kind {
+    ($check:ident) => {
+        $check!("improved", Improved::new(0), 1, (-0.5, 0.5));
+        $check!("improved", Improved::new(3), 2, (-1.0, 1.0));
+        $check!("improved", Improved::new(0), 3, (-1.04, 1.04));
+        $check!("improved-2002", Improved::new(0).with_variant(ImprovedVariant::Original2002), 3, (-1.04, 1.04));
+        $check!("improved", Improved::new(9), 4, (-1.3, 1.3));
+        $check!("value", Value::new(0), 1, (-1.0, 1.0));
+        $check!("value", Value::new(1), 2, (-1.0, 1.0));
+        $check!("value", Value::new(0), 3, (-1.0, 1.0));
+        $check!("value", Value::new(0), 4, (-1.0, 1.0));
+    };
+}
+
+/// Points that exercise every branch: lattice nodes, the floats either side of
+/// cell borders, negative coordinates, ordinary and large values.
+fn probe_points<const D: usize>() -> Vec<[f32; D]> {
+    let mut rng = SplitMix64(0x5EED + D as u64);
+    let mut uniform = move |lo: f32, hi: f32| lo + (hi - lo) * ((rng.next() >> 40) as f32 / (1u64 << 24) as f32);
+    let mut pts = Vec::new();
+    for k in -3..=3 {
+        let k = k as f32;
+        for v in [k, k.next_up(), k.next_down(), k + 0.5, k - 0.25] {
+            pts.push([v; D]);
+        }
+    }
+    for _ in 0..3000 {
+        let mut p = [0f32; D];
+        for c in p.iter_mut() {
+            *c = match (uniform(0.0, 1.0) * 4.0) as u32 {
+                0 => uniform(-300.0, 300.0),
+                1 => uniform(-2.0, 2.0),
+                2 => {
+                    // A cell border, approached from either side.
+                    let k = uniform(-50.0, 50.0).round();
+                    if uniform(0.0, 1.0) < 0.5 { k.next_up() } else { k.next_down() }
+                }
+                _ => -uniform(0.0, 1000.0),
+            };
+        }
+        pts.push(p);
+    }
+    pts
+}
+
+fn same(a: f32, b: f32) -> bool {
+    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+}
+
+fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
+    let pts = probe_points::<D>();
+    let scalar: Vec<f32> = pts.iter().map(|&p| noise.get_f32(p)).collect();
+    for level in SimdLevel::available() {
+        let mut out = vec![0f32; pts.len()];
+        fill_points_at(level, noise, &pts, &mut out);
+        for (i, (&s, &b)) in scalar.iter().zip(&out).enumerate() {
+            assert!(same(s, b), "{name} {D}D {level:?}: point {:?}: scalar {s:e} batch {b:e}", pts[i]);
+        }
+        // A grid straddling negative coordinates and cell borders, with a
+        // row length that is not a multiple of the lane width.
+        let mut size = [1usize; D];
+        size[0] = 37;
+        if D > 1 {
+            size[1] = 5;
+        }
+        let grid = Grid::new([-2.125; D], [0.0625; D], size);
+        let mut out = vec![0f32; grid.len()];
+        fill_grid_at(level, noise, &grid, &mut out).unwrap();
+        for (i, &b) in out.iter().enumerate() {
+            let s = noise.get_f32(grid.point(i));
+            assert!(same(s, b), "{name} {D}D {level:?}: grid point {:?}: scalar {s:e} batch {b:e}", grid.point(i));
+        }
+    }
+}
+
+#[test]
+fn batch_equals_scalar_f32_bit_for_bit() {
+    macro_rules! check {
+        ($name:expr, $noise:expr, $d:literal, $range:expr) => {
+            check_batch::<_, $d>($name, &$noise)
+        };
+    }
+    for_every_kind!(check);
+}
+
+fn check_range<N: Noise<D>, const D: usize>(name: &str, noise: &N, (lo, hi): (f64, f64)) {
+    let mut rng = SplitMix64(D as u64 * 7919);
+    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+    for _ in 0..200_000 {
+        let mut p = [0f64; D];
+        for c in p.iter_mut() {
+            *c = (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 512.0 - 256.0;
+        }
+        let v = noise.get(p);
+        min = min.min(v);
+        max = max.max(v);
+    }
+    assert!(min >= lo && max <= hi, "{name} {D}D: values [{min}, {max}] outside documented [{lo}, {hi}]");
+    // The range is not vacuous: the noise uses a good part of it.
+    assert!(max - min > 0.5 * (hi - lo), "{name} {D}D: values [{min}, {max}] span too little of [{lo}, {hi}]");
+}
+
+#[test]
+fn values_stay_in_documented_range() {
+    macro_rules! check {
+        ($name:expr, $noise:expr, $d:literal, $range:expr) => {
+            check_range::<_, $d>($name, &$noise, $range)
+        };
+    }
+    for_every_kind!(check);
+}
+
+fn check_special<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        for axis in 0..D {
+            let mut p = [0.3; D];
+            p[axis] = bad;
+            let v = noise.get(p);
+            assert!(v.is_nan(), "{name} {D}D: {p:?} gave {v}, want NaN");
+            let v = noise.get_f32(p.map(|c| c as f32));
+            assert!(v.is_nan(), "{name} {D}D f32: {p:?} gave {v}, want NaN");
+        }
+    }
+    // Far beyond ±2³¹ cells: finite, no panic (debug builds check overflow).
+    for huge in [3.0e9, -3.0e9, 1.0e15, -1.0e15, 1.0e300, -1.0e300, f64::MAX, f64::MIN, 2.0f64.powi(31), -(2.0f64.powi(31))]
+    {
+        let mut p = [0.5; D];
+        p[0] = huge;
+        assert!(noise.get(p).is_finite(), "{name} {D}D: {p:?} not finite");
+        // In f32 the same magnitudes, clamped to the largest finite float.
+        let pf = p.map(|c| (c as f32).clamp(f32::MIN, f32::MAX));
+        assert!(noise.get_f32(pf).is_finite(), "{name} {D}D f32: {pf:?} not finite");
+    }
+}
+
+#[test]
+fn special_inputs_follow_the_contract() {
+    macro_rules! check {
+        ($name:expr, $noise:expr, $d:literal, $range:expr) => {
+            check_special::<_, $d>($name, &$noise)
+        };
+    }
+    for_every_kind!(check);
+}
+
+#[test]
+fn noises_are_send_sync_and_cheap_to_share() {
+    fn assert_traits<T: Send + Sync + Clone + 'static>() {}
+    assert_traits::<Improved>();
+    assert_traits::<Value>();
+}
+
+/// The contract on arbitrary inputs: non-finite in, NaN out; finite in,
+/// finite out; every API agrees.
+fn check_any<N: Noise<D>, const D: usize>(name: &str, noise: &N, coords: &[f64]) {
+    let mut p = [0f64; D];
+    p.copy_from_slice(&coords[..D]);
+    let v = noise.get(p);
+    if p.iter().all(|c| c.is_finite()) {
+        assert!(v.is_finite(), "{name} {D}D: {p:?} gave {v}");
+    } else {
+        assert!(v.is_nan(), "{name} {D}D: {p:?} gave {v}, want NaN");
+    }
+    let pf = p.map(|c| c as f32);
+    let vf = noise.get_f32(pf);
+    assert_eq!(vf.is_nan(), pf.iter().any(|c| !c.is_finite()), "{name} {D}D f32: {pf:?} gave {vf}");
+    let mut out = [0f32; 1];
+    noise.fill_points(&[pf], &mut out);
+    assert!(same(out[0], vf), "{name} {D}D: batch {} != scalar {vf} at {pf:?}", out[0]);
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    #[test]
+    fn arbitrary_inputs_follow_the_contract(
+        coords in proptest::collection::vec(proptest::num::f64::ANY, 8),
+        small in proptest::collection::vec(-1.0e4f64..1.0e4, 8),
+    ) {
+        macro_rules! check {
+            ($name:expr, $noise:expr, $d:literal, $range:expr) => {{
+                let noise = $noise;
+                check_any::<_, $d>($name, &noise, &coords);
+                check_any::<_, $d>($name, &noise, &small);
+            }};
+        }
+        for_every_kind!(check);
+    }
+}
