@@ -53,8 +53,10 @@ pub enum Precision {
     F32,
 }
 
+/// Arguments of `noiselab sample`.
 #[derive(Args, Debug)]
 pub struct SampleArgs {
+    /// The noise to sample.
     #[command(flatten)]
     pub noise: NoiseArgs,
     /// Arithmetic precision.
@@ -62,8 +64,10 @@ pub struct SampleArgs {
     pub precision: Precision,
 }
 
+/// Arguments of `noiselab render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
+    /// The noise to render.
     #[command(flatten)]
     pub noise: NoiseArgs,
     /// Image size in pixels, WIDTHxHEIGHT.

@@ -134,6 +134,13 @@ impl Pending {
             write(&mut w).map_err(err)?;
             w.flush().map_err(err)?;
         }
+        // Temporary files are created owner-only; the result should have the
+        // permissions of an ordinary new file.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            self.temp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644)).map_err(err)?;
+        }
         self.temp.as_file().sync_all().map_err(err)?;
         let persisted =
             if self.force { self.temp.persist(&self.dest) } else { self.temp.persist_noclobber(&self.dest) };

@@ -38,11 +38,9 @@ pub enum Field {
     D8(Box<dyn DynNoise<8>>),
 }
 
-/// Highest dimension the command line offers.
-pub const MAX_DIMS: usize = 8;
-
 macro_rules! with_field {
     ($field:expr, $n:ident, $d:ident => $body:expr) => {
+        #[allow(dead_code)] // `$d` is unused where the body infers the dimension
         match $field {
             Field::D1($n) => { const $d: usize = 1; $body }
             Field::D2($n) => { const $d: usize = 2; $body }
