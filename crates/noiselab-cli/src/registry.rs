@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{DynNoise, Grid, GridError, Improved, ImprovedVariant, Value};
+use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Value};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -94,6 +94,10 @@ fn improved(p: &Params, variant: &str) -> Field {
 
 
 
+fn classic(p: &Params, _: &str) -> Field {
+    field!(Classic::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3])
+}
+
 fn value(p: &Params, _: &str) -> Field {
     field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
 }
@@ -101,6 +105,18 @@ fn value(p: &Params, _: &str) -> Field {
 
 /// Every kind, in the order `list` shows them.
 pub static KINDS: &[KindSpec] = &[
+    KindSpec {
+        name: "classic",
+        summary: "Perlin 1985 gradient noise (cubic s-curve, 256-entry permutation), reference-exact",
+        dims: 1..=3,
+        default_dims: 3,
+        variants: &[],
+        range: |d| {
+            let b = (d as f64 / 4.0).sqrt();
+            (-b, b)
+        },
+        build: classic,
+    },
     KindSpec {
         name: "improved",
         summary: "Perlin 2002 improved noise (quintic fade, edge gradients), reference-exact",
@@ -110,7 +126,12 @@ pub static KINDS: &[KindSpec] = &[
             ("current", "the reference gradient as it stands today"),
             ("2002", "the gradient as first published in 2002"),
         ],
-        range: |_| (-1.0, 1.0),
+        range: |d| match d {
+            1 => (-0.5, 0.5),
+            2 => (-1.0, 1.0),
+            3 => (-1.04, 1.04),
+            _ => (-1.3, 1.3),
+        },
         build: improved,
     },
     KindSpec {

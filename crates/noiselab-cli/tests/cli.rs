@@ -38,6 +38,14 @@ fn sample_values_round_trip_exactly() {
 }
 
 #[test]
+fn sample_classic_f32_matches_the_1985_program() {
+    // First row of classic1985_2d.csv (Perlin's verbatim float C code).
+    let out = noiselab().args(["sample", "classic", "--dims", "2", "--precision", "f32"]).write_stdin("-102.15499877929688,-41.161708831787109\n").output().unwrap();
+    let got: f32 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
+    assert_eq!(got as f64, -0.17061978578567505);
+}
+
+#[test]
 fn sample_f32_and_dims() {
     let out = noiselab().args(["sample", "value", "--dims", "2", "--precision", "f32", "--seed", "4"]).write_stdin("0.5,0.5\n").output().unwrap();
     let got: f32 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
@@ -57,6 +65,7 @@ fn sample_bad_line_names_the_line_and_stops() {
 fn sample_rejects_bad_arguments() {
     assert_one_line_error(&noiselab().args(["sample", "nosuch"]).output().unwrap(), "unknown kind");
     assert_one_line_error(&noiselab().args(["sample", "improved", "--dims", "5"]).output().unwrap(), "--dims");
+    assert_one_line_error(&noiselab().args(["sample", "classic", "--dims", "4"]).output().unwrap(), "--dims");
     assert_one_line_error(&noiselab().args(["sample", "improved", "--variant", "1999"]).output().unwrap(), "--variant");
     assert_one_line_error(&noiselab().args(["sample", "value", "--variant", "x"]).output().unwrap(), "no variants");
     assert_one_line_error(&noiselab().args(["sample", "improved", "--seed", "-1"]).output().unwrap(), "seed");
@@ -146,7 +155,7 @@ fn render_rejects_bad_arguments() {
 fn list_names_every_kind() {
     let out = noiselab().arg("list").output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
-    for kind in ["improved", "value"] {
+    for kind in ["classic", "improved", "value"] {
         assert!(text.lines().any(|l| l.starts_with(kind)), "{kind} missing from:\n{text}");
     }
 }

@@ -30,11 +30,12 @@
 //!
 //! | kind | paper | dims | range |
 //! |---|---|---|---|
+//! | [`Classic`] | Perlin 1985 | 1–3 | 1D ±0.5, 2D ±0.71, 3D ±0.87 |
 //! | [`Improved`] | Perlin 2002 | 1–4 | 1D ±0.5, 2D ±1, 3D ±1.04, 4D ±1.3 |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
 //!
-//! Classic (1985), simplex, N-dimensional simplex and Olano's modified noise
-//! are planned (issue 2) and not yet implemented.
+//! Simplex, N-dimensional simplex and Olano's modified noise are planned
+//! (issue 2) and not yet implemented.
 //!
 //! ## Special inputs
 //!
@@ -56,6 +57,7 @@ pub mod lanes;
 mod noise;
 
 pub use grid::{Grid, GridError, SimdLevel};
+pub use kinds::classic::Classic;
 pub use kinds::improved::{Improved, ImprovedVariant};
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};

@@ -4,12 +4,15 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Grid, Improved, ImprovedVariant, Noise, SimdLevel, Value};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Noise, SimdLevel, Value};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
 macro_rules! for_every_kind {
     ($check:ident) => {
+        $check!("classic", Classic::new(0), 1, (-0.5, 0.5));
+        $check!("classic", Classic::new(5), 2, (-0.71, 0.71));
+        $check!("classic", Classic::new(0), 3, (-0.87, 0.87));
         $check!("improved", Improved::new(0), 1, (-0.5, 0.5));
         $check!("improved", Improved::new(3), 2, (-1.0, 1.0));
         $check!("improved", Improved::new(0), 3, (-1.04, 1.04));
@@ -156,6 +159,7 @@ fn special_inputs_follow_the_contract() {
 #[test]
 fn noises_are_send_sync_and_cheap_to_share() {
     fn assert_traits<T: Send + Sync + Clone + 'static>() {}
+    assert_traits::<Classic>();
     assert_traits::<Improved>();
     assert_traits::<Value>();
 }

@@ -1,5 +1,6 @@
 //! The noise kinds, one module each, and the lattice machinery they share.
 
+pub mod classic;
 pub mod improved;
 pub mod value;
 

@@ -29,6 +29,9 @@ pub trait Elem: sealed::Sealed + Copy + Send + Sync + PartialOrd + Debug + 'stat
     fn from_f64(x: f64) -> Self;
     /// Widen to `f64` (exact).
     fn to_f64(self) -> f64;
+    /// Of two tables holding the same data in each precision, the one of
+    /// this type (for kinds whose tables are rounded per precision).
+    fn pick<'a>(single: &'a [f32], double: &'a [f64]) -> &'a [Self];
 }
 
 /// A fixed number of floating-point lanes, operated on element-wise.

@@ -15,6 +15,10 @@ impl Elem for f32 {
     fn to_f64(self) -> f64 {
         self as f64
     }
+    #[inline(always)]
+    fn pick<'a>(single: &'a [f32], _double: &'a [f64]) -> &'a [f32] {
+        single
+    }
 }
 
 impl Elem for f64 {
@@ -25,6 +29,10 @@ impl Elem for f64 {
     #[inline(always)]
     fn to_f64(self) -> f64 {
         self
+    }
+    #[inline(always)]
+    fn pick<'a>(_single: &'a [f32], double: &'a [f64]) -> &'a [f64] {
+        double
     }
 }
 
