@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Value};
+use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Simplex, Value};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -98,6 +98,10 @@ fn classic(p: &Params, _: &str) -> Field {
     field!(Classic::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3])
 }
 
+fn simplex(p: &Params, _: &str) -> Field {
+    field!(Simplex::new(p.seed), p.dims, [2 => D2, 3 => D3])
+}
+
 fn value(p: &Params, _: &str) -> Field {
     field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
 }
@@ -133,6 +137,15 @@ pub static KINDS: &[KindSpec] = &[
             _ => (-1.3, 1.3),
         },
         build: improved,
+    },
+    KindSpec {
+        name: "simplex",
+        summary: "simplex noise, Gustavson's 2012 reference (2D, 3D), reference-exact",
+        dims: 2..=3,
+        default_dims: 3,
+        variants: &[],
+        range: |_| (-1.0, 1.0),
+        build: simplex,
     },
     KindSpec {
         name: "value",

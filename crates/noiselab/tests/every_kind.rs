@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Noise, SimdLevel, Value};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Noise, SimdLevel, Simplex, Value};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -18,6 +18,8 @@ macro_rules! for_every_kind {
         $check!("improved", Improved::new(0), 3, (-1.04, 1.04));
         $check!("improved-2002", Improved::new(0).with_variant(ImprovedVariant::Original2002), 3, (-1.04, 1.04));
         $check!("improved", Improved::new(9), 4, (-1.3, 1.3));
+        $check!("simplex", Simplex::new(0), 2, (-1.0, 1.0));
+        $check!("simplex", Simplex::new(2), 3, (-1.0, 1.0));
         $check!("value", Value::new(0), 1, (-1.0, 1.0));
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));
@@ -161,6 +163,7 @@ fn noises_are_send_sync_and_cheap_to_share() {
     fn assert_traits<T: Send + Sync + Clone + 'static>() {}
     assert_traits::<Classic>();
     assert_traits::<Improved>();
+    assert_traits::<Simplex>();
     assert_traits::<Value>();
 }
 

@@ -1,0 +1,154 @@
+//! Simplex noise (Perlin 2001), as Gustavson's reference `SimplexNoise.java`
+//! (version 2012-03-09) computes it, in 2D and 3D.
+
+use crate::hash::Permutation;
+use crate::lanes::{IntLanes, Lanes};
+use crate::noise::Noise;
+
+/// Gustavson's `grad3`: the 12 edge midpoints of the cube.
+const GRAD3: [[i32; 12]; 3] = [
+    [1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0],
+    [1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1],
+    [0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1],
+];
+
+/// Simplex noise, value-identical in `f64` to Gustavson's 2012 Java
+/// reference (seed 0 = Perlin's permutation, which that code uses; other
+/// seeds shuffle it).
+///
+/// * 2D: kernel radius² 0.5, scale 70; 3D: radius² 0.6, scale 32 — with 0.6
+///   the 3D kernel is not zero on the simplex faces, so the reference (and
+///   this) is slightly discontinuous there.
+/// * Ranges: within ±1 (tested on random points).
+/// * 1D and 4D, and analytic gradients, are planned.
+#[derive(Clone, Debug)]
+pub struct Simplex {
+    perm: Permutation,
+    seed: u32,
+}
+
+impl Simplex {
+    /// Simplex noise with the permutation for `seed` (0 = reference).
+    pub fn new(seed: u32) -> Self {
+        Simplex { perm: Permutation::new(seed), seed }
+    }
+
+    /// The seed.
+    pub fn seed(&self) -> u32 {
+        self.seed
+    }
+
+    /// `permMod12[i]`.
+    #[inline(always)]
+    fn gradient_index<I: IntLanes>(&self, i: I) -> I {
+        self.perm.at(i).rem_euclid(12)
+    }
+
+    /// One corner's contribution: `(r² − |d|²)⁴ · (g · d)` where positive.
+    #[inline(always)]
+    fn corner<L: Lanes, const D: usize>(r2: f64, gi: L::Int, d: [L; D]) -> L {
+        let mut t = L::cst(r2);
+        for c in d {
+            t = t - c * c;
+        }
+        let mut dot = L::from_int(L::Int::gather_i32(&GRAD3[0], gi)) * d[0];
+        for k in 1..D {
+            dot = dot + L::from_int(L::Int::gather_i32(&GRAD3[k], gi)) * d[k];
+        }
+        let t2 = t * t;
+        L::select(t.lt(L::cst(0.0)), L::cst(0.0), t2 * t2 * dot)
+    }
+}
+
+/// `value` where every coordinate is finite, NaN elsewhere. Simplex kernels
+/// are radial, so an infinite coordinate would otherwise give a quiet 0; the
+/// library's contract is NaN for non-finite input.
+#[inline(always)]
+fn finite_or_nan<L: Lanes, const D: usize>(p: [L; D], value: L) -> L {
+    // x − x is 0 for finite x and NaN for ±∞ and NaN.
+    let mut poison = L::cst(0.0);
+    for c in p {
+        poison = poison + (c - c);
+    }
+    L::select(poison.le(L::cst(0.0)), value, poison)
+}
+
+/// 1 where the mask is set, else 0.
+#[inline(always)]
+fn one_if<L: Lanes>(m: L::Mask) -> L::Int {
+    L::Int::select(m, L::Int::splat(1), L::Int::splat(0))
+}
+
+/// `x − i` for an offset `i` ∈ {0, 1}, exact like the reference's `x0 - i1`.
+#[inline(always)]
+fn minus<L: Lanes>(x: L, i: L::Int) -> L {
+    x - L::from_int(i)
+}
+
+impl Noise<2> for Simplex {
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, [xin, yin]: [L; 2]) -> L {
+        let f2 = L::cst(0.5 * (3f64.sqrt() - 1.0));
+        let g2 = L::cst((3.0 - 3f64.sqrt()) / 6.0);
+        let s = (xin + yin) * f2;
+        let i = (xin + s).floor().to_int_wrapping();
+        let j = (yin + s).floor().to_int_wrapping();
+        let t = L::from_int(i.add(j)) * g2;
+        let x0 = xin - (L::from_int(i) - t);
+        let y0 = yin - (L::from_int(j) - t);
+        let upper = x0.gt(y0);
+        let (i1, j1) = (one_if::<L>(upper), one_if::<L>(!upper));
+        let x1 = minus(x0, i1) + g2;
+        let y1 = minus(y0, j1) + g2;
+        let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
+        let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
+        let (ii, jj) = (i.and_c(255), j.and_c(255));
+        let gi0 = self.gradient_index(ii.add(self.perm.at(jj)));
+        let gi1 = self.gradient_index(ii.add(i1).add(self.perm.at(jj.add(j1))));
+        let gi2 = self.gradient_index(ii.add_c(1).add(self.perm.at(jj.add_c(1))));
+        let n0 = Self::corner(0.5, gi0, [x0, y0]);
+        let n1 = Self::corner(0.5, gi1, [x1, y1]);
+        let n2 = Self::corner(0.5, gi2, [x2, y2]);
+        finite_or_nan([xin, yin], L::cst(70.0) * (n0 + n1 + n2))
+    }
+}
+
+impl Noise<3> for Simplex {
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, [xin, yin, zin]: [L; 3]) -> L {
+        let f3 = L::cst(1.0 / 3.0);
+        let g3 = L::cst(1.0 / 6.0);
+        let s = (xin + yin + zin) * f3;
+        let i = (xin + s).floor().to_int_wrapping();
+        let j = (yin + s).floor().to_int_wrapping();
+        let k = (zin + s).floor().to_int_wrapping();
+        let t = L::from_int(i.add(j).add(k)) * g3;
+        let x0 = xin - (L::from_int(i) - t);
+        let y0 = yin - (L::from_int(j) - t);
+        let z0 = zin - (L::from_int(k) - t);
+        // The reference's if/else ladder (with its `>=` tie rules) as masks.
+        let (xy, yz, xz) = (x0.ge(y0), y0.ge(z0), x0.ge(z0));
+        let i1 = one_if::<L>(xy & (yz | xz));
+        let j1 = one_if::<L>(!xy & yz);
+        let k1 = one_if::<L>((xy & !yz & !xz) | (!xy & !yz));
+        let i2 = one_if::<L>(xy | (yz & xz));
+        let j2 = one_if::<L>(!xy | yz);
+        let k2 = one_if::<L>((xy & !yz) | (!xy & (!yz | !xz)));
+        let (g3x2, g3x3) = (L::cst(2.0) * g3, L::cst(3.0) * g3);
+        let d1 = [minus(x0, i1) + g3, minus(y0, j1) + g3, minus(z0, k1) + g3];
+        let d2 = [minus(x0, i2) + g3x2, minus(y0, j2) + g3x2, minus(z0, k2) + g3x2];
+        let one = L::cst(1.0);
+        let d3 = [x0 - one + g3x3, y0 - one + g3x3, z0 - one + g3x3];
+        let (ii, jj, kk) = (i.and_c(255), j.and_c(255), k.and_c(255));
+        let hash = |a: L::Int, b: L::Int, c: L::Int| {
+            self.gradient_index(ii.add(a).add(self.perm.at(jj.add(b).add(self.perm.at(kk.add(c))))))
+        };
+        let zero = L::Int::splat(0);
+        let unit = L::Int::splat(1);
+        let n0 = Self::corner(0.6, hash(zero, zero, zero), [x0, y0, z0]);
+        let n1 = Self::corner(0.6, hash(i1, j1, k1), d1);
+        let n2 = Self::corner(0.6, hash(i2, j2, k2), d2);
+        let n3 = Self::corner(0.6, hash(unit, unit, unit), d3);
+        finite_or_nan([xin, yin, zin], L::cst(32.0) * (n0 + n1 + n2 + n3))
+    }
+}
