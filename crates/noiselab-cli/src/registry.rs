@@ -99,7 +99,7 @@ fn classic(p: &Params, _: &str) -> Field {
 }
 
 fn simplex(p: &Params, _: &str) -> Field {
-    field!(Simplex::new(p.seed), p.dims, [2 => D2, 3 => D3])
+    field!(Simplex::new(p.seed), p.dims, [2 => D2, 3 => D3, 4 => D4])
 }
 
 fn value(p: &Params, _: &str) -> Field {
@@ -140,8 +140,8 @@ pub static KINDS: &[KindSpec] = &[
     },
     KindSpec {
         name: "simplex",
-        summary: "simplex noise, Gustavson's 2012 reference (2D, 3D), reference-exact",
-        dims: 2..=3,
+        summary: "simplex noise, Gustavson's 2012 reference (2D-4D), reference-exact",
+        dims: 2..=4,
         default_dims: 3,
         variants: &[],
         range: |_| (-1.0, 1.0),

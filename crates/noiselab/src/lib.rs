@@ -32,10 +32,10 @@
 //! |---|---|---|---|
 //! | [`Classic`] | Perlin 1985 | 1–3 | 1D ±0.5, 2D ±0.71, 3D ±0.87 |
 //! | [`Improved`] | Perlin 2002 | 1–4 | 1D ±0.5, 2D ±1, 3D ±1.04, 4D ±1.3 |
-//! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 2–3 | \[−1, 1\] |
+//! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 2–4 | \[−1, 1\] |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
 //!
-//! Simplex 1D/4D, N-dimensional simplex and Olano's modified noise are
+//! Simplex 1D and gradients, N-dimensional simplex and Olano's modified noise are
 //! planned (issue 2) and not yet implemented.
 //!
 //! ## Special inputs

@@ -15,3 +15,9 @@ fn simplex_3d_matches_gustavson_2012() {
     let n = Simplex::new(0);
     assert_bit_exact("simplex3d", &read_reference("simplex3d.csv"), |p| n.get([p[0], p[1], p[2]]));
 }
+
+#[test]
+fn simplex_4d_matches_gustavson_2012() {
+    let n = Simplex::new(0);
+    assert_bit_exact("simplex4d", &read_reference("simplex4d.csv"), |p| n.get([p[0], p[1], p[2], p[3]]));
+}

@@ -20,6 +20,7 @@ macro_rules! for_every_kind {
         $check!("improved", Improved::new(9), 4, (-1.3, 1.3));
         $check!("simplex", Simplex::new(0), 2, (-1.0, 1.0));
         $check!("simplex", Simplex::new(2), 3, (-1.0, 1.0));
+        $check!("simplex", Simplex::new(0), 4, (-1.0, 1.0));
         $check!("value", Value::new(0), 1, (-1.0, 1.0));
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));

@@ -1,5 +1,5 @@
 //! Simplex noise (Perlin 2001), as Gustavson's reference `SimplexNoise.java`
-//! (version 2012-03-09) computes it, in 2D and 3D.
+//! (version 2012-03-09) computes it, in 2D, 3D and 4D.
 
 use crate::hash::Permutation;
 use crate::lanes::{IntLanes, Lanes};
@@ -12,15 +12,23 @@ const GRAD3: [[i32; 12]; 3] = [
     [0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1],
 ];
 
+/// Gustavson's `grad4`: the 32 permutations of (0, ±1, ±1, ±1), by column.
+const GRAD4: [[i32; 32]; 4] = [
+    [0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, -1, -1, -1, -1, 1, 1, 1, 1, -1, -1, -1, -1, 1, 1, 1, 1, -1, -1, -1, -1],
+    [1, 1, 1, 1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1],
+    [1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 1, -1, 1, -1, 1, -1, 1, -1],
+    [1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 0, 0, 0, 0],
+];
+
 /// Simplex noise, value-identical in `f64` to Gustavson's 2012 Java
 /// reference (seed 0 = Perlin's permutation, which that code uses; other
 /// seeds shuffle it).
 ///
-/// * 2D: kernel radius² 0.5, scale 70; 3D: radius² 0.6, scale 32 — with 0.6
-///   the 3D kernel is not zero on the simplex faces, so the reference (and
-///   this) is slightly discontinuous there.
+/// * 2D: kernel radius² 0.5, scale 70; 3D and 4D: radius² 0.6, scale 32 and
+///   27 — with 0.6 the kernel is not zero on the simplex faces, so the
+///   reference (and this) is slightly discontinuous there.
 /// * Ranges: within ±1 (tested on random points).
-/// * 1D and 4D, and analytic gradients, are planned.
+/// * 1D and analytic gradients are planned.
 #[derive(Clone, Debug)]
 pub struct Simplex {
     perm: Permutation,
@@ -46,14 +54,14 @@ impl Simplex {
 
     /// One corner's contribution: `(r² − |d|²)⁴ · (g · d)` where positive.
     #[inline(always)]
-    fn corner<L: Lanes, const D: usize>(r2: f64, gi: L::Int, d: [L; D]) -> L {
+    fn corner<L: Lanes, const D: usize>(r2: f64, grads: [&[i32]; D], gi: L::Int, d: [L; D]) -> L {
         let mut t = L::cst(r2);
         for c in d {
             t = t - c * c;
         }
-        let mut dot = L::from_int(L::Int::gather_i32(&GRAD3[0], gi)) * d[0];
+        let mut dot = L::from_int(L::Int::gather_i32(grads[0], gi)) * d[0];
         for k in 1..D {
-            dot = dot + L::from_int(L::Int::gather_i32(&GRAD3[k], gi)) * d[k];
+            dot = dot + L::from_int(L::Int::gather_i32(grads[k], gi)) * d[k];
         }
         let t2 = t * t;
         L::select(t.lt(L::cst(0.0)), L::cst(0.0), t2 * t2 * dot)
@@ -106,9 +114,10 @@ impl Noise<2> for Simplex {
         let gi0 = self.gradient_index(ii.add(self.perm.at(jj)));
         let gi1 = self.gradient_index(ii.add(i1).add(self.perm.at(jj.add(j1))));
         let gi2 = self.gradient_index(ii.add_c(1).add(self.perm.at(jj.add_c(1))));
-        let n0 = Self::corner(0.5, gi0, [x0, y0]);
-        let n1 = Self::corner(0.5, gi1, [x1, y1]);
-        let n2 = Self::corner(0.5, gi2, [x2, y2]);
+        let g = [&GRAD3[0][..], &GRAD3[1][..]];
+        let n0 = Self::corner(0.5, g, gi0, [x0, y0]);
+        let n1 = Self::corner(0.5, g, gi1, [x1, y1]);
+        let n2 = Self::corner(0.5, g, gi2, [x2, y2]);
         finite_or_nan([xin, yin], L::cst(70.0) * (n0 + n1 + n2))
     }
 }
@@ -145,10 +154,65 @@ impl Noise<3> for Simplex {
         };
         let zero = L::Int::splat(0);
         let unit = L::Int::splat(1);
-        let n0 = Self::corner(0.6, hash(zero, zero, zero), [x0, y0, z0]);
-        let n1 = Self::corner(0.6, hash(i1, j1, k1), d1);
-        let n2 = Self::corner(0.6, hash(i2, j2, k2), d2);
-        let n3 = Self::corner(0.6, hash(unit, unit, unit), d3);
+        let g = [&GRAD3[0][..], &GRAD3[1][..], &GRAD3[2][..]];
+        let n0 = Self::corner(0.6, g, hash(zero, zero, zero), [x0, y0, z0]);
+        let n1 = Self::corner(0.6, g, hash(i1, j1, k1), d1);
+        let n2 = Self::corner(0.6, g, hash(i2, j2, k2), d2);
+        let n3 = Self::corner(0.6, g, hash(unit, unit, unit), d3);
         finite_or_nan([xin, yin, zin], L::cst(32.0) * (n0 + n1 + n2 + n3))
+    }
+}
+
+impl Noise<4> for Simplex {
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, p: [L; 4]) -> L {
+        let f4 = L::cst((5f64.sqrt() - 1.0) / 4.0);
+        let g4 = L::cst((5.0 - 5f64.sqrt()) / 20.0);
+        let s = (p[0] + p[1] + p[2] + p[3]) * f4;
+        let c = p.map(|x| (x + s).floor().to_int_wrapping());
+        let t = L::from_int(c[0].add(c[1]).add(c[2]).add(c[3])) * g4;
+        let mut x0 = p;
+        for a in 0..4 {
+            x0[a] = p[a] - (L::from_int(c[a]) - t);
+        }
+        // Rank each axis as the reference does: for every pair, the larger
+        // (strictly) scores a point; on a tie the second axis scores.
+        let mut rank = [L::Int::splat(0); 4];
+        for a in 0..4 {
+            for b in a + 1..4 {
+                let a_wins = one_if::<L>(x0[a].gt(x0[b]));
+                rank[a] = rank[a].add(a_wins);
+                rank[b] = rank[b].add(L::Int::splat(1).sub(a_wins));
+            }
+        }
+        // Corner k (1..=3) steps along the axes ranked at least 4 − k.
+        let offset = |k: i32| rank.map(|r| one_if::<L>(L::Int::splat(3 - k).lt(r)));
+        let (o1, o2, o3) = (offset(1), offset(2), offset(3));
+        let gk = |k: f64| L::cst(k) * g4;
+        let d = |o: [L::Int; 4], k: f64| {
+            let mut v = x0;
+            for a in 0..4 {
+                v[a] = minus(x0[a], o[a]) + if k == 1.0 { g4 } else { gk(k) };
+            }
+            v
+        };
+        let one = L::cst(1.0);
+        let d4 = x0.map(|x| x - one + gk(4.0));
+        let cc = c.map(|ci| ci.and_c(255));
+        let hash = |o: [L::Int; 4]| {
+            let h = self.perm.at(cc[3].add(o[3]));
+            let h = self.perm.at(cc[2].add(o[2]).add(h));
+            let h = self.perm.at(cc[1].add(o[1]).add(h));
+            self.perm.at(cc[0].add(o[0]).add(h)).and_c(31)
+        };
+        let zero = [L::Int::splat(0); 4];
+        let unit = [L::Int::splat(1); 4];
+        let g = [&GRAD4[0][..], &GRAD4[1][..], &GRAD4[2][..], &GRAD4[3][..]];
+        let n0 = Self::corner(0.6, g, hash(zero), x0);
+        let n1 = Self::corner(0.6, g, hash(o1), d(o1, 1.0));
+        let n2 = Self::corner(0.6, g, hash(o2), d(o2, 2.0));
+        let n3 = Self::corner(0.6, g, hash(o3), d(o3, 3.0));
+        let n4 = Self::corner(0.6, g, hash(unit), d4);
+        finite_or_nan(p, L::cst(27.0) * (n0 + n1 + n2 + n3 + n4))
     }
 }
