@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Simplex, Value};
+use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, Simplex, Value};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -102,6 +102,11 @@ fn simplex(p: &Params, _: &str) -> Field {
     field!(Simplex::new(p.seed), p.dims, [2 => D2, 3 => D3, 4 => D4])
 }
 
+fn modified(p: &Params, variant: &str) -> Field {
+    let hash = if variant == "wide" { ModifiedHash::Wide } else { ModifiedHash::Mod61 };
+    field!(Modified::new(p.seed).with_hash(hash), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+}
+
 fn value(p: &Params, _: &str) -> Field {
     field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
 }
@@ -155,6 +160,22 @@ pub static KINDS: &[KindSpec] = &[
         variants: &[],
         range: |_| (-1.0, 1.0),
         build: value,
+    },
+    KindSpec {
+        name: "modified",
+        summary: "Olano 2005 modified noise: table-free hash, exact zero slices",
+        dims: 1..=4,
+        default_dims: 3,
+        variants: &[
+            ("mod61", "squaring modulo 61, period 61 cells (Olano)"),
+            ("wide", "32-bit mixing hash with the same structure, no short period"),
+        ],
+        range: |d| match d {
+            1 => (-0.31, 0.31),
+            2 => (-0.61, 0.61),
+            _ => (-1.0, 1.0),
+        },
+        build: modified,
     },
 ];
 

@@ -33,10 +33,11 @@
 //! | [`Classic`] | Perlin 1985 | 1–3 | 1D ±0.5, 2D ±0.71, 3D ±0.87 |
 //! | [`Improved`] | Perlin 2002 | 1–4 | 1D ±0.5, 2D ±1, 3D ±1.04, 4D ±1.3 |
 //! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 2–4 | \[−1, 1\] |
+//! | [`Modified`] | Olano 2005 | 1–4 | 1D ±0.31, 2D ±0.61, 3D/4D ±1 |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
 //!
-//! Simplex 1D and gradients, N-dimensional simplex and Olano's modified noise are
-//! planned (issue 2) and not yet implemented.
+//! Simplex 1D and gradients, N-dimensional simplex and modified noise's
+//! textured evaluation are planned (issue 2) and not yet implemented.
 //!
 //! ## Special inputs
 //!
@@ -60,6 +61,7 @@ mod noise;
 pub use grid::{Grid, GridError, SimdLevel};
 pub use kinds::classic::Classic;
 pub use kinds::improved::{Improved, ImprovedVariant};
+pub use kinds::modified::{Modified, ModifiedHash};
 pub use kinds::simplex::Simplex;
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};

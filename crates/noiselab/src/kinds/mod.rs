@@ -2,6 +2,7 @@
 
 pub mod classic;
 pub mod improved;
+pub mod modified;
 pub mod simplex;
 pub mod value;
 
