@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, Simplex, Value};
+use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Simplex, Value};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -103,8 +103,15 @@ fn simplex(p: &Params, _: &str) -> Field {
 }
 
 fn modified(p: &Params, variant: &str) -> Field {
-    let hash = if variant == "wide" { ModifiedHash::Wide } else { ModifiedHash::Mod61 };
-    field!(Modified::new(p.seed).with_hash(hash), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+    let computed = |hash| Modified::new(p.seed).with_hash(hash);
+    match variant {
+        "wide" => field!(computed(ModifiedHash::Wide), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]),
+        "textured" => {
+            let t = ModifiedTexture::new(&computed(ModifiedHash::Mod61));
+            field!(t, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+        }
+        _ => field!(computed(ModifiedHash::Mod61), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]),
+    }
 }
 
 fn value(p: &Params, _: &str) -> Field {
@@ -169,6 +176,7 @@ pub static KINDS: &[KindSpec] = &[
         variants: &[
             ("mod61", "squaring modulo 61, period 61 cells (Olano)"),
             ("wide", "32-bit mixing hash with the same structure, no short period"),
+            ("textured", "mod61 evaluated from a baked 61x61 plane table (same values)"),
         ],
         range: |d| match d {
             1 => (-0.31, 0.31),

@@ -36,8 +36,8 @@
 //! | [`Modified`] | Olano 2005 | 1–4 | 1D ±0.31, 2D ±0.61, 3D/4D ±1 |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
 //!
-//! Simplex 1D and gradients, N-dimensional simplex and modified noise's
-//! textured evaluation are planned (issue 2) and not yet implemented.
+//! Simplex 1D and gradients and N-dimensional simplex are planned (issue 2)
+//! and not yet implemented.
 //!
 //! ## Special inputs
 //!
@@ -61,7 +61,7 @@ mod noise;
 pub use grid::{Grid, GridError, SimdLevel};
 pub use kinds::classic::Classic;
 pub use kinds::improved::{Improved, ImprovedVariant};
-pub use kinds::modified::{Modified, ModifiedHash};
+pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
 pub use kinds::simplex::Simplex;
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};

@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, Noise, SimdLevel, Simplex, Value};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, Value};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -27,6 +27,8 @@ macro_rules! for_every_kind {
         $check!("modified", Modified::new(0), 4, (-1.0, 1.0));
         $check!("modified-wide", Modified::new(3).with_hash(ModifiedHash::Wide), 3, (-1.0, 1.0));
         $check!("modified-wide", Modified::new(3).with_hash(ModifiedHash::Wide), 4, (-1.0, 1.0));
+        $check!("modified-textured", ModifiedTexture::new(&Modified::new(2)), 3, (-1.0, 1.0));
+        $check!("modified-textured", ModifiedTexture::new(&Modified::new(0)), 4, (-1.0, 1.0));
         $check!("value", Value::new(0), 1, (-1.0, 1.0));
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));
@@ -172,6 +174,7 @@ fn noises_are_send_sync_and_cheap_to_share() {
     assert_traits::<Improved>();
     assert_traits::<Simplex>();
     assert_traits::<Modified>();
+    assert_traits::<ModifiedTexture>();
     assert_traits::<Value>();
 }
 

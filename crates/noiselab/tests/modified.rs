@@ -1,7 +1,7 @@
 //! Modified noise: exact zero slices, the 61-cell period, gradients.
 
 use noiselab::hash::SplitMix64;
-use noiselab::{Modified, ModifiedHash, Noise, NoiseGradient};
+use noiselab::{Modified, ModifiedHash, ModifiedTexture, Noise, NoiseGradient};
 
 fn points(n: usize, seed: u64) -> Vec<[f64; 4]> {
     let mut rng = SplitMix64(seed);
@@ -64,6 +64,19 @@ fn gradients_match_central_differences() {
             b[k] -= h;
             let numeric = (n.get(a) - n.get(b)) / (2.0 * h);
             assert!((numeric - g[k]).abs() < 1e-6 * (1.0 + g[k].abs()), "{p:?} d/dx{k}: {} vs {numeric}", g[k]);
+        }
+    }
+}
+
+#[test]
+fn textured_evaluation_equals_computed() {
+    for seed in [0, 1, 44] {
+        let computed = Modified::new(seed);
+        let textured = ModifiedTexture::new(&computed);
+        for [x, y, z, w] in points(100_000, 4 + seed as u64) {
+            assert_eq!(Noise::<2>::get(&textured, [x, y]), Noise::<2>::get(&computed, [x, y]));
+            assert_eq!(Noise::<3>::get(&textured, [x, y, z]), Noise::<3>::get(&computed, [x, y, z]));
+            assert_eq!(Noise::<4>::get(&textured, [x, y, z, w]), Noise::<4>::get(&computed, [x, y, z, w]));
         }
     }
 }

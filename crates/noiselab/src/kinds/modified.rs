@@ -23,6 +23,8 @@
 use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, MAX_CORNERS};
 use crate::hash::fmix32;
 use crate::lanes::{cell, IntLanes, Lanes};
+use alloc::sync::Arc;
+use alloc::vec::Vec;
 use crate::noise::{Noise, NoiseGradient};
 
 /// The hash modified noise chains over the coordinates.
@@ -93,11 +95,7 @@ impl Modified {
     /// The chained hash of a lattice node, padded to 4D with zeros.
     #[inline(always)]
     fn node_hash<I: IntLanes, const D: usize>(&self, node: [I; D]) -> I {
-        let seed = match self.hash {
-            ModifiedHash::Mod61 => (self.seed % 61) as i32,
-            ModifiedHash::Wide => self.seed as i32,
-        };
-        let mut h = I::splat(seed);
+        let mut h = I::splat(self.chain_seed());
         for d in (0..4).rev() {
             let c = if d < D { node[d] } else { I::splat(0) };
             h = self.step(c.add(h));
@@ -105,8 +103,23 @@ impl Modified {
         h
     }
 
-    #[inline(always)]
-    fn corners<L: Lanes, const D: usize>(&self, p: [L; D]) -> ([L; MAX_CORNERS], [[L; D]; MAX_CORNERS], [L; D]) {
+    /// The seed as it enters the chain.
+    fn chain_seed(&self) -> i32 {
+        match self.hash {
+            ModifiedHash::Mod61 => (self.seed % 61) as i32,
+            ModifiedHash::Wide => self.seed as i32,
+        }
+    }
+}
+
+/// Corner values and gradient vectors of the cell around `p`, for any way
+/// of hashing a node.
+#[inline(always)]
+fn corners<L: Lanes, const D: usize>(
+    p: [L; D],
+    node_hash: impl Fn([L::Int; D]) -> L::Int,
+) -> ([L; MAX_CORNERS], [[L; D]; MAX_CORNERS], [L; D]) {
+    {
         let (c, f) = cell(p);
         let mut v = [L::cst(0.0); MAX_CORNERS];
         let mut g = [[L::cst(0.0); D]; MAX_CORNERS];
@@ -115,7 +128,7 @@ impl Modified {
             for (d, n) in node.iter_mut().enumerate() {
                 *n = n.add_c(corner_bit(corner, d));
             }
-            let h = self.node_hash(node);
+            let h = node_hash(node);
             let mut dot = L::cst(0.0);
             for d in 0..D {
                 let offset = if corner_bit(corner, d) == 1 { f[d] - L::cst(1.0) } else { f[d] };
@@ -129,19 +142,63 @@ impl Modified {
     }
 }
 
+/// Olano's other evaluation: the mod-61 hash of the z = w = 0 plane baked
+/// into a 61×61 table ("texture"), `T[x][y] = P(x + P(y))`, and higher
+/// dimensions combined from it procedurally: the plane of integer (z, w) is
+/// reached by offsetting y by `P(z + P(w + s))`, as Fuller's shader selects
+/// a z-plane by offsetting y by a hash of z. Values are identical to the
+/// computed [`Modified`] (mod 61) with the same seed, bit for bit.
+#[derive(Clone, Debug)]
+pub struct ModifiedTexture {
+    table: Arc<[i32]>,
+    computed: Modified,
+}
+
+impl ModifiedTexture {
+    /// Bake the table for `noise`'s seed (the mod-61 hash is always used:
+    /// the wide hash has no small period to bake).
+    pub fn new(noise: &Modified) -> Self {
+        let computed = noise.with_hash(ModifiedHash::Mod61);
+        // The plane itself is seed-free: the seed enters through the offset.
+        let plane = Modified::new(0);
+        let table: Vec<i32> = (0..61 * 61).map(|k| plane.node_hash::<i32, 2>([k / 61, k % 61])).collect();
+        ModifiedTexture { table: table.into(), computed }
+    }
+
+    #[inline(always)]
+    fn node_hash<I: IntLanes, const D: usize>(&self, node: [I; D]) -> I {
+        // Procedural part: the plane offset from the axes beyond y.
+        let mut inner = I::splat(self.computed.chain_seed());
+        for d in (2..4).rev() {
+            let c = if d < D { node[d] } else { I::splat(0) };
+            inner = self.computed.step(c.add(inner));
+        }
+        let y = if D > 1 { node[1] } else { I::splat(0) };
+        let row = node[0].rem_euclid(61).mul(I::splat(61));
+        I::gather_i32(&self.table, row.add(y.add(inner).rem_euclid(61)))
+    }
+}
+
 macro_rules! impl_modified {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Modified {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let (v, _, f) = self.corners(p);
+                let (v, _, f) = corners(p, |n| self.node_hash(n));
+                interpolate(v, f.map(fade5)) * L::cst(SCALE)
+            }
+        }
+        impl Noise<$d> for ModifiedTexture {
+            #[inline(always)]
+            fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
+                let (v, _, f) = corners(p, |n| self.node_hash(n));
                 interpolate(v, f.map(fade5)) * L::cst(SCALE)
             }
         }
         impl NoiseGradient<$d> for Modified {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                let (v, g, f) = self.corners(p);
+                let (v, g, f) = corners(p, |n| self.node_hash(n));
                 let (value, grad) = interpolate_gradient(v, g, f.map(fade5), f.map(fade5_deriv));
                 (value * L::cst(SCALE), grad.map(|c| c * L::cst(SCALE)))
             }
