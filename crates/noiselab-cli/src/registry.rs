@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Simplex, Value};
+use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Simplex, SimplexN, Value};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -114,6 +114,11 @@ fn modified(p: &Params, variant: &str) -> Field {
     }
 }
 
+fn simplex_n(p: &Params, _: &str) -> Field {
+    let n = SimplexN::new(p.seed);
+    field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4, 5 => D5, 6 => D6, 7 => D7, 8 => D8])
+}
+
 fn value(p: &Params, _: &str) -> Field {
     field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
 }
@@ -158,6 +163,15 @@ pub static KINDS: &[KindSpec] = &[
         variants: &[],
         range: |_| (-1.0, 1.0),
         build: simplex,
+    },
+    KindSpec {
+        name: "simplex-n",
+        summary: "N-dimensional simplex noise (any dimension, cost O(n^2))",
+        dims: 1..=8,
+        default_dims: 5,
+        variants: &[],
+        range: |_| (-1.0, 1.0),
+        build: simplex_n,
     },
     KindSpec {
         name: "value",

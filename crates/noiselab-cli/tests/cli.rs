@@ -155,7 +155,7 @@ fn render_rejects_bad_arguments() {
 fn list_names_every_kind() {
     let out = noiselab().arg("list").output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
-    for kind in ["classic", "improved", "simplex", "value", "modified"] {
+    for kind in ["classic", "improved", "simplex", "simplex-n", "value", "modified"] {
         assert!(text.lines().any(|l| l.starts_with(kind)), "{kind} missing from:\n{text}");
     }
 }

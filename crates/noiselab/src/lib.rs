@@ -35,9 +35,9 @@
 //! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 2–4 | \[−1, 1\] |
 //! | [`Modified`] | Olano 2005 | 1–4 | 1D ±0.31, 2D ±0.61, 3D/4D ±1 |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
+//! | [`SimplexN`] | Perlin 1999 ("Making Noise") | any | \[−1, 1\] for D ≤ 8 |
 //!
-//! Simplex 1D and gradients and N-dimensional simplex are planned (issue 2)
-//! and not yet implemented.
+//! Simplex 1D and simplex gradients are planned (issue 2).
 //!
 //! ## Special inputs
 //!
@@ -63,6 +63,7 @@ pub use kinds::classic::Classic;
 pub use kinds::improved::{Improved, ImprovedVariant};
 pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
 pub use kinds::simplex::Simplex;
+pub use kinds::simplex_n::{SimplexCost, SimplexN};
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};
 

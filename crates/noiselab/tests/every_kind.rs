@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, Value};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Value};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -29,6 +29,10 @@ macro_rules! for_every_kind {
         $check!("modified-wide", Modified::new(3).with_hash(ModifiedHash::Wide), 4, (-1.0, 1.0));
         $check!("modified-textured", ModifiedTexture::new(&Modified::new(2)), 3, (-1.0, 1.0));
         $check!("modified-textured", ModifiedTexture::new(&Modified::new(0)), 4, (-1.0, 1.0));
+        $check!("simplex-n", SimplexN::new(0), 2, (-1.0, 1.0));
+        $check!("simplex-n", SimplexN::new(1), 3, (-1.0, 1.0));
+        $check!("simplex-n", SimplexN::new(0), 5, (-1.0, 1.0));
+        $check!("simplex-n", SimplexN::new(4), 6, (-1.0, 1.0));
         $check!("value", Value::new(0), 1, (-1.0, 1.0));
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));
@@ -173,6 +177,7 @@ fn noises_are_send_sync_and_cheap_to_share() {
     assert_traits::<Classic>();
     assert_traits::<Improved>();
     assert_traits::<Simplex>();
+    assert_traits::<SimplexN>();
     assert_traits::<Modified>();
     assert_traits::<ModifiedTexture>();
     assert_traits::<Value>();

@@ -4,6 +4,7 @@ pub mod classic;
 pub mod improved;
 pub mod modified;
 pub mod simplex;
+pub mod simplex_n;
 pub mod value;
 
 use crate::lanes::{lerp, Lanes};
