@@ -99,7 +99,7 @@ fn classic(p: &Params, _: &str) -> Field {
 }
 
 fn simplex(p: &Params, _: &str) -> Field {
-    field!(Simplex::new(p.seed), p.dims, [2 => D2, 3 => D3, 4 => D4])
+    field!(Simplex::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
 }
 
 fn modified(p: &Params, variant: &str) -> Field {
@@ -157,8 +157,8 @@ pub static KINDS: &[KindSpec] = &[
     },
     KindSpec {
         name: "simplex",
-        summary: "simplex noise, Gustavson's 2012 reference (2D-4D), reference-exact",
-        dims: 2..=4,
+        summary: "simplex noise, Gustavson's 2012 reference (2D-4D) and simplexnoise1234 (1D), reference-exact",
+        dims: 1..=4,
         default_dims: 3,
         variants: &[],
         range: |_| (-1.0, 1.0),

@@ -32,12 +32,12 @@
 //! |---|---|---|---|
 //! | [`Classic`] | Perlin 1985 | 1–3 | 1D ±0.5, 2D ±0.71, 3D ±0.87 |
 //! | [`Improved`] | Perlin 2002 | 1–4 | 1D ±0.5, 2D ±1, 3D ±1.04, 4D ±1.3 |
-//! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 2–4 | \[−1, 1\] |
+//! | [`Simplex`] | Perlin 2001 / Gustavson 2012 | 1–4 | 1D ±0.64, 2D–4D \[−1, 1\] |
 //! | [`Modified`] | Olano 2005 | 1–4 | 1D ±0.31, 2D ±0.61, 3D/4D ±1 |
 //! | [`Value`] | lattice value noise | 1–4 | \[−1, 1\] |
 //! | [`SimplexN`] | Perlin 1999 ("Making Noise") | any | \[−1, 1\] for D ≤ 8 |
 //!
-//! Simplex 1D and simplex gradients are planned (issue 2).
+//! Analytic gradients of simplex noise are planned (issue 2).
 //!
 //! ## Special inputs
 //!

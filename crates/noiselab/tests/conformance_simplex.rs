@@ -21,3 +21,11 @@ fn simplex_4d_matches_gustavson_2012() {
     let n = Simplex::new(0);
     assert_bit_exact("simplex4d", &read_reference("simplex4d.csv"), |p| n.get([p[0], p[1], p[2], p[3]]));
 }
+
+#[test]
+fn simplex_1d_f32_matches_simplexnoise1234_c() {
+    let n = Simplex::new(0);
+    assert_bit_exact("gustavson_simplexnoise1234_1d", &read_reference("gustavson_simplexnoise1234_1d.csv"), |p| {
+        n.get_f32([p[0] as f32]) as f64
+    });
+}

@@ -18,6 +18,7 @@ macro_rules! for_every_kind {
         $check!("improved", Improved::new(0), 3, (-1.04, 1.04));
         $check!("improved-2002", Improved::new(0).with_variant(ImprovedVariant::Original2002), 3, (-1.04, 1.04));
         $check!("improved", Improved::new(9), 4, (-1.3, 1.3));
+        $check!("simplex", Simplex::new(0), 1, (-0.64, 0.64));
         $check!("simplex", Simplex::new(0), 2, (-1.0, 1.0));
         $check!("simplex", Simplex::new(2), 3, (-1.0, 1.0));
         $check!("simplex", Simplex::new(0), 4, (-1.0, 1.0));
