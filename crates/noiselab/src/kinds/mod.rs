@@ -70,3 +70,16 @@ pub(crate) fn interpolate_gradient<L: Lanes, const D: usize>(
 pub(crate) const fn corner_bit(c: usize, d: usize) -> i32 {
     ((c >> d) & 1) as i32
 }
+
+/// `value` where every coordinate is finite, NaN elsewhere. Simplex kernels
+/// are radial, so an infinite coordinate would otherwise give a quiet 0; the
+/// library's contract is NaN for non-finite input.
+#[inline(always)]
+pub(crate) fn finite_or_nan<L: Lanes, const D: usize>(p: [L; D], value: L) -> L {
+    // x − x is 0 for finite x and NaN for ±∞ and NaN.
+    let mut poison = L::cst(0.0);
+    for c in p {
+        poison = poison + (c - c);
+    }
+    L::select(poison.le(L::cst(0.0)), value, poison)
+}

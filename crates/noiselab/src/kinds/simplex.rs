@@ -2,6 +2,7 @@
 //! (version 2012-03-09) computes it, in 2D, 3D and 4D; 1D as his
 //! `simplexnoise1234.c`.
 
+use super::finite_or_nan;
 use crate::hash::Permutation;
 use crate::lanes::{IntLanes, Lanes};
 use crate::noise::Noise;
@@ -70,19 +71,6 @@ impl Simplex {
         let t2 = t * t;
         L::select(t.lt(L::cst(0.0)), L::cst(0.0), t2 * t2 * dot)
     }
-}
-
-/// `value` where every coordinate is finite, NaN elsewhere. Simplex kernels
-/// are radial, so an infinite coordinate would otherwise give a quiet 0; the
-/// library's contract is NaN for non-finite input.
-#[inline(always)]
-fn finite_or_nan<L: Lanes, const D: usize>(p: [L; D], value: L) -> L {
-    // x − x is 0 for finite x and NaN for ±∞ and NaN.
-    let mut poison = L::cst(0.0);
-    for c in p {
-        poison = poison + (c - c);
-    }
-    L::select(poison.le(L::cst(0.0)), value, poison)
 }
 
 /// 1 where the mask is set, else 0.

@@ -2,6 +2,7 @@
 //! noise … for higher dimensions", cost O(n²) instead of the cube
 //! lattice's O(2ⁿ)).
 
+use super::finite_or_nan;
 use crate::hash::hash_cell;
 use crate::lanes::{IntLanes, Lanes};
 use crate::noise::Noise;
@@ -120,13 +121,7 @@ impl SimplexN {
             let r2 = r * r;
             total = total + L::select(r.lt(L::cst(0.0)), L::cst(0.0), r2 * r2 * dot);
         }
-        // Radial kernels make ±∞ contribute 0; the contract is NaN.
-        let mut poison = L::cst(0.0);
-        for x in p {
-            poison = poison + (x - x);
-        }
-        let v = total * L::cst(scale(D));
-        L::select(poison.le(L::cst(0.0)), v, poison)
+        finite_or_nan(p, total * L::cst(scale(D)))
     }
 }
 
