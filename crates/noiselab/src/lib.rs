@@ -49,6 +49,8 @@
 
 #![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_op_in_unsafe_fn)]
+// Lane code walks several parallel per-axis arrays at once; indices read clearer.
+#![allow(clippy::needless_range_loop)]
 
 extern crate alloc;
 

@@ -75,8 +75,8 @@ pub(crate) const fn corner_bit(c: usize, d: usize) -> i32 {
 /// are radial, so an infinite coordinate would otherwise give a quiet 0; the
 /// library's contract is NaN for non-finite input.
 #[inline(always)]
+#[allow(clippy::eq_op)] // x − x is 0 for finite x and NaN for ±∞ and NaN.
 pub(crate) fn finite_or_nan<L: Lanes, const D: usize>(p: [L; D], value: L) -> L {
-    // x − x is 0 for finite x and NaN for ±∞ and NaN.
     let mut poison = L::cst(0.0);
     for c in p {
         poison = poison + (c - c);
