@@ -58,46 +58,74 @@ impl Simplex {
         self.perm.at(i).rem_euclid(12)
     }
 
-    /// One corner's contribution `(r² − |d|²)⁴ · (g · d)` where positive,
-    /// and its gradient. Inside a simplex `d` moves with the input point, so
-    /// `∂/∂x_j = t⁴ g_j − 8 t³ d_j (g · d)` with `t = r² − |d|²`.
+    /// Gradient vector number `gi` from a by-axis table.
     #[inline(always)]
-    fn corner<L: Lanes, const D: usize>(r2: f64, grads: [&[i32]; D], gi: L::Int, d: [L; D]) -> (L, [L; D]) {
-        let mut t = L::cst(r2);
-        for c in d {
-            t = t - c * c;
+    fn gather<L: Lanes, const D: usize>(table: [&[i32]; D], gi: L::Int) -> [L; D] {
+        table.map(|axis| L::from_int(L::Int::gather_i32(axis, gi)))
+    }
+}
+
+/// A point's `C` simplex corners, ready to sum: corner `c` contributes
+/// `(r² − |d|²)⁴ · (g · d)` where positive, with `d` its offset and `g` its
+/// gradient. The corner search is shared; `value` and `value_gradient` do
+/// only the arithmetic each needs, so `sample` pays nothing for gradients.
+struct Corners<L: Lanes, const D: usize, const C: usize> {
+    p: [L; D],
+    r2: f64,
+    scale: f64,
+    g: [[L; D]; C],
+    d: [[L; D]; C],
+}
+
+impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
+    /// `(r² − |d|², g · d)` for corner `c`.
+    #[inline(always)]
+    fn falloff_and_dot(&self, c: usize) -> (L, L) {
+        let (g, d) = (self.g[c], self.d[c]);
+        let mut t = L::cst(self.r2);
+        for k in 0..D {
+            t = t - d[k] * d[k];
         }
-        let g = grads.map(|axis| L::from_int(L::Int::gather_i32(axis, gi)));
         let mut dot = g[0] * d[0];
         for k in 1..D {
             dot = dot + g[k] * d[k];
         }
-        let t2 = t * t;
-        let t4 = t2 * t2;
-        let outside = t.lt(L::cst(0.0));
-        let zero = L::cst(0.0);
-        let slope = L::cst(8.0) * t2 * t * dot;
-        let mut grad = d;
-        for k in 0..D {
-            grad[k] = L::select(outside, zero, t4 * g[k] - slope * d[k]);
-        }
-        (L::select(outside, zero, t4 * dot), grad)
+        (t, dot)
     }
-}
 
-/// `scale ×` the sum of the corners' values and gradients (summed in the
-/// reference's order), NaN for non-finite input.
-#[inline(always)]
-fn total<L: Lanes, const D: usize, const C: usize>(p: [L; D], scale: f64, corners: [(L, [L; D]); C]) -> (L, [L; D]) {
-    let (mut v, mut g) = corners[0];
-    for (cv, cg) in &corners[1..] {
-        v = v + *cv;
-        for k in 0..D {
-            g[k] = g[k] + cg[k];
+    /// The noise: `scale ×` the corners summed in the reference's order;
+    /// NaN for non-finite input.
+    #[inline(always)]
+    fn value(&self) -> L {
+        let mut sum = L::cst(0.0);
+        for c in 0..C {
+            let (t, dot) = self.falloff_and_dot(c);
+            let t2 = t * t;
+            let n = L::select(t.lt(L::cst(0.0)), L::cst(0.0), t2 * t2 * dot);
+            sum = if c == 0 { n } else { sum + n };
         }
+        finite_or_nan(self.p, L::cst(self.scale) * sum)
     }
-    let s = L::cst(scale);
-    (finite_or_nan(p, s * v), g.map(|gk| finite_or_nan(p, s * gk)))
+
+    /// The noise and its gradient. Inside a simplex `d` moves with the
+    /// point, so `∂n/∂x_j = t⁴ g_j − 8 t³ d_j (g · d)` with `t = r² − |d|²`.
+    #[inline(always)]
+    fn value_gradient(&self) -> (L, [L; D]) {
+        let zero = L::cst(0.0);
+        let mut grad = [zero; D];
+        for c in 0..C {
+            let (t, dot) = self.falloff_and_dot(c);
+            let t2 = t * t;
+            let slope = L::cst(8.0) * t2 * t * dot;
+            let outside = t.lt(zero);
+            for k in 0..D {
+                let term = L::select(outside, zero, t2 * t2 * self.g[c][k] - slope * self.d[c][k]);
+                grad[k] = if c == 0 { term } else { grad[k] + term };
+            }
+        }
+        let s = L::cst(self.scale);
+        (self.value(), grad.map(|gk| finite_or_nan(self.p, s * gk)))
+    }
 }
 
 /// 1 where the mask is set, else 0.
@@ -114,7 +142,7 @@ fn minus<L: Lanes>(x: L, i: L::Int) -> L {
 
 impl Simplex {
     #[inline(always)]
-    fn eval2<L: Lanes>(&self, [xin, yin]: [L; 2]) -> (L, [L; 2]) {
+    fn corners2<L: Lanes>(&self, [xin, yin]: [L; 2]) -> Corners<L, 2, 3> {
         let f2 = L::cst(0.5 * (3f64.sqrt() - 1.0));
         let g2 = L::cst((3.0 - 3f64.sqrt()) / 6.0);
         let s = (xin + yin) * f2;
@@ -134,14 +162,12 @@ impl Simplex {
         let gi1 = self.gradient_index(ii.add(i1).add(self.perm.at(jj.add(j1))));
         let gi2 = self.gradient_index(ii.add_c(1).add(self.perm.at(jj.add_c(1))));
         let g = [&GRAD3[0][..], &GRAD3[1][..]];
-        let n0 = Self::corner(0.5, g, gi0, [x0, y0]);
-        let n1 = Self::corner(0.5, g, gi1, [x1, y1]);
-        let n2 = Self::corner(0.5, g, gi2, [x2, y2]);
-        total([xin, yin], 70.0, [n0, n1, n2])
+        let g = [gi0, gi1, gi2].map(|gi| Self::gather(g, gi));
+        Corners { p: [xin, yin], r2: 0.5, scale: 70.0, g, d: [[x0, y0], [x1, y1], [x2, y2]] }
     }
 
     #[inline(always)]
-    fn eval3<L: Lanes>(&self, [xin, yin, zin]: [L; 3]) -> (L, [L; 3]) {
+    fn corners3<L: Lanes>(&self, [xin, yin, zin]: [L; 3]) -> Corners<L, 3, 4> {
         let f3 = L::cst(1.0 / 3.0);
         let g3 = L::cst(1.0 / 6.0);
         let s = (xin + yin + zin) * f3;
@@ -172,15 +198,13 @@ impl Simplex {
         let zero = L::Int::splat(0);
         let unit = L::Int::splat(1);
         let g = [&GRAD3[0][..], &GRAD3[1][..], &GRAD3[2][..]];
-        let n0 = Self::corner(0.6, g, hash(zero, zero, zero), [x0, y0, z0]);
-        let n1 = Self::corner(0.6, g, hash(i1, j1, k1), d1);
-        let n2 = Self::corner(0.6, g, hash(i2, j2, k2), d2);
-        let n3 = Self::corner(0.6, g, hash(unit, unit, unit), d3);
-        total([xin, yin, zin], 32.0, [n0, n1, n2, n3])
+        let gi = [hash(zero, zero, zero), hash(i1, j1, k1), hash(i2, j2, k2), hash(unit, unit, unit)];
+        let g = gi.map(|gi| Self::gather(g, gi));
+        Corners { p: [xin, yin, zin], r2: 0.6, scale: 32.0, g, d: [[x0, y0, z0], d1, d2, d3] }
     }
 
     #[inline(always)]
-    fn eval4<L: Lanes>(&self, p: [L; 4]) -> (L, [L; 4]) {
+    fn corners4<L: Lanes>(&self, p: [L; 4]) -> Corners<L, 4, 5> {
         let f4 = L::cst((5f64.sqrt() - 1.0) / 4.0);
         let g4 = L::cst((5.0 - 5f64.sqrt()) / 20.0);
         let s = (p[0] + p[1] + p[2] + p[3]) * f4;
@@ -223,50 +247,43 @@ impl Simplex {
         let zero = [L::Int::splat(0); 4];
         let unit = [L::Int::splat(1); 4];
         let g = [&GRAD4[0][..], &GRAD4[1][..], &GRAD4[2][..], &GRAD4[3][..]];
-        let n0 = Self::corner(0.6, g, hash(zero), x0);
-        let n1 = Self::corner(0.6, g, hash(o1), d(o1, 1.0));
-        let n2 = Self::corner(0.6, g, hash(o2), d(o2, 2.0));
-        let n3 = Self::corner(0.6, g, hash(o3), d(o3, 3.0));
-        let n4 = Self::corner(0.6, g, hash(unit), d4);
-        total(p, 27.0, [n0, n1, n2, n3, n4])
+        let gi = [hash(zero), hash(o1), hash(o2), hash(o3), hash(unit)];
+        let g = gi.map(|gi| Self::gather(g, gi));
+        Corners { p, r2: 0.6, scale: 27.0, g, d: [x0, d(o1, 1.0), d(o2, 2.0), d(o3, 3.0), d4] }
     }
 
     /// 1D: Gustavson's `simplexnoise1234` definition (Perlin's permutation;
-    /// kernel (1 − x²)⁴, gradients ±1…±8 from the hash, scale 0.25). The
-    /// kernel reaches zero exactly at the neighbouring node, so no clamp.
+    /// kernel (1 − x²)⁴, gradients ±1…±8 from the hash, scale 0.25). With
+    /// r² = 1 the kernel reaches zero exactly at the neighbouring node.
     #[inline(always)]
-    fn eval1<L: Lanes>(&self, [x]: [L; 1]) -> (L, [L; 1]) {
+    fn corners1<L: Lanes>(&self, [x]: [L; 1]) -> Corners<L, 1, 2> {
         let fl = x.floor();
         let i0 = fl.to_int_wrapping();
         let x0 = x - fl;
-        let x1 = x0 - L::cst(1.0);
-        let contribution = |i: L::Int, d: L| {
+        let gradient = |i: L::Int| {
             let h = self.perm.at(i.and_c(255)).and_c(15);
             let g = L::from_int(h.and_c(7).add_c(1));
-            let g = L::select(h.bit(3), -g, g);
-            let t = L::cst(1.0) - d * d;
-            let t2 = t * t;
-            let t4 = t2 * t2;
-            (t4 * (g * d), [t4 * g - L::cst(8.0) * t2 * t * d * (g * d)])
+            [L::select(h.bit(3), -g, g)]
         };
-        total([x], 0.25, [contribution(i0, x0), contribution(i0.add_c(1), x1)])
+        let g = [gradient(i0), gradient(i0.add_c(1))];
+        Corners { p: [x], r2: 1.0, scale: 0.25, g, d: [[x0], [x0 - L::cst(1.0)]] }
     }
 }
 
 macro_rules! impl_simplex {
-    ($($d:literal => $eval:ident),*) => {$(
+    ($($d:literal => $corners:ident),*) => {$(
         impl Noise<$d> for Simplex {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                self.$eval(p).0
+                self.$corners(p).value()
             }
         }
         impl NoiseGradient<$d> for Simplex {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                self.$eval(p)
+                self.$corners(p).value_gradient()
             }
         }
     )*};
 }
-impl_simplex!(1 => eval1, 2 => eval2, 3 => eval3, 4 => eval4);
+impl_simplex!(1 => corners1, 2 => corners2, 3 => corners3, 4 => corners4);
