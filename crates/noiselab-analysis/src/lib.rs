@@ -4,10 +4,13 @@
 //!
 //! ```
 //! use noiselab_analysis::{analyze, Field, Options};
-//! let field = noiselab_analysis::reference::gaussian_noise(256, 256, 3.8, 1);
-//! let report = analyze(&[field], &Options::default()).unwrap();
-//! // Gaussian-filtered white noise peaks at 1/(2πσ) cycles per pixel.
-//! assert!((report.spectrum.peak_frequency - 0.0419).abs() < 0.006);
+//! let seeds: Vec<Field> = (1..=4).map(|s| noiselab_analysis::reference::gaussian_noise(512, 512, 3.8, s)).collect();
+//! let report = analyze(&seeds, &Options::default()).unwrap();
+//! // Gaussian-filtered white noise peaks at 1/(2πσ) = 0.0419 cycles per pixel,
+//! // and shows no lattice.
+//! assert!((report.spectrum.peak_frequency - 0.0419).abs() < 0.005);
+//! assert!(report.cyclostationarity.cyclo_max_over_null < 1.5);
+//! println!("{report}");
 //! ```
 //!
 //! The metrics and their sources are documented in `docs/quality-metrics.md`

@@ -82,7 +82,7 @@ fn a_tiled_render_has_periodicity_zero() {
     // Perlin's permutation repeats every 256 cells: at 2 px per cell the
     // field repeats every 512 px, exactly; one pixel off it does not.
     let field = render(&Improved::new(0), 1024, 2.0, 0.5);
-    let tiled = analyze(&[field.clone()], &Options { lattice: None, period: Some(512) }).unwrap();
+    let tiled = analyze(std::slice::from_ref(&field), &Options { lattice: None, period: Some(512) }).unwrap();
     let p = tiled.periodicity.unwrap();
     assert_eq!(p.x.unwrap().max_abs_diff, 0.0);
     assert_eq!(p.y.unwrap().max_abs_diff, 0.0);
@@ -134,10 +134,10 @@ fn bad_input_is_a_typed_error() {
     assert_eq!(analyze(&[flat], &Options::default()).unwrap_err(), AnalysisError::Constant);
     for period in [0.0, -3.0, f64::NAN, f64::INFINITY] {
         let opts = Options { lattice: Some(Lattice { period, offset: (0, 0) }), period: None };
-        assert!(matches!(analyze(&[a.clone()], &opts), Err(AnalysisError::BadParameter(_))), "{period}");
+        assert!(matches!(analyze(std::slice::from_ref(&a), &opts), Err(AnalysisError::BadParameter(_))), "{period}");
     }
     let opts = Options { lattice: None, period: Some(0) };
-    assert!(matches!(analyze(&[a.clone()], &opts), Err(AnalysisError::BadParameter(_))));
+    assert!(matches!(analyze(std::slice::from_ref(&a), &opts), Err(AnalysisError::BadParameter(_))));
     // A non-integer lattice is analysed but marked inexact, without node numbers.
     let opts = Options { lattice: Some(Lattice { period: 10.5, offset: (0, 0) }), period: Some(1000) };
     let r = analyze(&[a], &opts).unwrap();

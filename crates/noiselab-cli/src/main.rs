@@ -1,7 +1,9 @@
 //! `noiselab`: sample and render procedural noise from the command line.
 
+mod analyze;
 mod output;
 mod registry;
+mod report;
 mod render;
 mod sample;
 
@@ -26,6 +28,27 @@ enum Command {
     /// Render a 2D image (or a slice of a higher-dimensional noise) to a file.
     #[command(allow_negative_numbers = true)]
     Render(RenderArgs),
+    /// Measure noise images: statistics, spectrum, isotropy, lattice artefacts.
+    /// Several files are several seeds of one noise (spectra averaged).
+    #[command(allow_negative_numbers = true)]
+    Analyze(AnalyzeArgs),
+    /// Render every kind at a matched peak frequency, analyse it, and write
+    /// the published comparison (docs/quality.md and its pictures).
+    Report(ReportArgs),
+}
+
+/// Arguments of `noiselab report`.
+#[derive(Args, Debug)]
+pub struct ReportArgs {
+    /// Folder receiving quality.md and quality/*.png.
+    #[arg(long, default_value = "docs")]
+    pub out: std::path::PathBuf,
+    /// Side of each analysed image, pixels.
+    #[arg(long, default_value_t = 1024, value_parser = render::parse_count)]
+    pub size: usize,
+    /// Seeds per noise (their periodograms are averaged).
+    #[arg(long, default_value_t = 4, value_parser = render::parse_count)]
+    pub seeds: usize,
 }
 
 /// Options shared by every command that builds a noise.
@@ -93,6 +116,34 @@ pub struct RenderArgs {
     pub force: bool,
 }
 
+/// Arguments of `noiselab analyze`.
+#[derive(Args, Debug)]
+pub struct AnalyzeArgs {
+    /// Images to analyse: .npy (2-D float32/float64), .f32 (raw float32, square
+    /// unless --size) or .exr; all the same size.
+    #[arg(required = true)]
+    pub files: Vec<std::path::PathBuf>,
+    /// Pixels per lattice cell (a node on pixel 0,0 unless --lattice-offset):
+    /// enables the node, folded-variance and second-derivative metrics.
+    #[arg(long, value_parser = render::parse_scale)]
+    pub lattice: Option<f64>,
+    /// Pixel COLUMN,ROW of a lattice node.
+    #[arg(long, default_value = "0,0", value_parser = render::parse_offset)]
+    pub lattice_offset: (usize, usize),
+    /// A period to test, in pixels (tiling check).
+    #[arg(long, value_parser = render::parse_count)]
+    pub period: Option<usize>,
+    /// Size of raw .f32 input, WIDTHxHEIGHT.
+    #[arg(long, value_parser = render::parse_size)]
+    pub size: Option<(usize, usize)>,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Write PNG plots (spectrum, radial profile, histogram, folded variance) into this folder.
+    #[arg(long)]
+    pub plots: Option<std::path::PathBuf>,
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -108,8 +159,13 @@ fn main() -> ExitCode {
             }
             // One line, as for every other error.
             let text = e.render().to_string();
-            let first = text.lines().next().unwrap_or("invalid arguments").trim_start_matches("error: ");
-            eprintln!("noiselab: {first} (see --help)");
+            // The message may continue on indented lines (e.g. the missing
+            // arguments) before the usage block; keep them, on one line.
+            let message: Vec<&str> = text.lines().take_while(|l| !l.trim().is_empty()).map(str::trim).collect();
+            let message = message.join(" ");
+            let message = message.trim_start_matches("error: ");
+            let message = if message.is_empty() { "invalid arguments" } else { message };
+            eprintln!("noiselab: {message} (see --help)");
             return ExitCode::from(2);
         }
     };
@@ -120,6 +176,8 @@ fn main() -> ExitCode {
         }
         Command::Sample(args) => sample::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Analyze(args) => analyze::run(&args),
+        Command::Report(args) => report::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,7 @@
 //! `noiselab render`: a 2D window of a noise, written atomically.
 
 use crate::output::{Format, Image};
+use crate::registry::Field;
 use crate::RenderArgs;
 
 /// Most pixels one render may have (1 GiB of f32 values).
@@ -10,7 +11,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let (spec, field, dims) = args.noise.build()?;
     let format = Format::from_path(&args.output)?;
     let (width, height) = args.size;
-    let pixels = width.checked_mul(height).filter(|&n| n <= MAX_PIXELS).ok_or_else(|| {
+    width.checked_mul(height).filter(|&n| n <= MAX_PIXELS).ok_or_else(|| {
         format!("--size {width}x{height} has more than {MAX_PIXELS} pixels")
     })?;
     let slice = args.slice.clone().map(|s| s.0).unwrap_or_default();
@@ -25,18 +26,30 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     // Open the destination first, so a bad path fails before any work.
     let pending = crate::output::Pending::create(&args.output, args.force)?;
 
-    // Pixel (row j, column i) = noise(X + i·(1/PX), Y + j·(1/PX), slice…).
-    let step = 1.0 / args.scale;
-    let mut values = vec![0f32; pixels];
+    let values = window(&field, dims, args.origin, &slice, 1.0 / args.scale, (width, height))?;
+    let image = Image { width, height, values: &values, range: (spec.range)(dims) };
+    pending.finish(|w| format.write(w, &image, args.bits))
+}
+
+/// Pixel (row j, column i) = noise(X + i·step, Y + j·step, slice…): the
+/// window every picture is made of. A 1D noise varies along x only.
+pub fn window(
+    field: &Field,
+    dims: usize,
+    (x, y): (f64, f64),
+    slice: &[f64],
+    step: f64,
+    (width, height): (usize, usize),
+) -> Result<Vec<f32>, String> {
+    let mut values = vec![0f32; width * height];
     if dims == 1 {
-        // A 1D noise varies along x only: every row is the same.
         let mut row = vec![0f32; width];
-        field.fill_grid(&[args.origin.0], &[step], &[width], &mut row).map_err(|e| e.to_string())?;
+        field.fill_grid(&[x], &[step], &[width], &mut row).map_err(|e| e.to_string())?;
         for r in values.chunks_mut(width) {
             r.copy_from_slice(&row);
         }
     } else {
-        let mut origin = vec![args.origin.0, args.origin.1];
+        let mut origin = vec![x, y];
         origin.extend(slice.iter().copied());
         origin.resize(dims, 0.0);
         let mut steps = vec![step, step];
@@ -45,8 +58,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         size.resize(dims, 1);
         field.fill_grid(&origin, &steps, &size, &mut values).map_err(|e| e.to_string())?;
     }
-    let image = Image { width, height, values: &values, range: (spec.range)(dims) };
-    pending.finish(|w| format.write(w, &image, args.bits))
+    Ok(values)
 }
 
 /// `WIDTHxHEIGHT`, both at least 1.
@@ -83,7 +95,7 @@ pub fn parse_scale(s: &str) -> Result<f64, String> {
     if v > 0.0 {
         Ok(v)
     } else {
-        Err(format!("scale must be positive, got {s}"))
+        Err(format!("expected a positive number of pixels, got {s}"))
     }
 }
 
@@ -93,6 +105,21 @@ pub fn parse_pair(s: &str) -> Result<(f64, f64), String> {
         [x, y] => Ok((*x, *y)),
         _ => Err(format!("'{s}' is not a pair like 0,0")),
     }
+}
+
+/// A positive whole number.
+pub fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n > 0 => Ok(n),
+        _ => Err(format!("expected a positive whole number, got '{s}'")),
+    }
+}
+
+/// `COLUMN,ROW`: two whole numbers.
+pub fn parse_offset(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{s}' is not a pixel like 0,0");
+    let (a, b) = s.split_once(',').ok_or_else(bad)?;
+    Ok((a.trim().parse().map_err(|_| bad())?, b.trim().parse().map_err(|_| bad())?))
 }
 
 /// Slice coordinates beyond x and y (a newtype: clap treats a bare `Vec` as

@@ -159,3 +159,91 @@ fn list_names_every_kind() {
         assert!(text.lines().any(|l| l.starts_with(kind)), "{kind} missing from:\n{text}");
     }
 }
+
+#[test]
+fn analyze_reports_text_json_and_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = dir.path().join("a.npy");
+    let b = dir.path().join("b.f32");
+    for (seed, path) in [("1", &a), ("2", &b)] {
+        let out = noiselab()
+            .args(["render", "improved", "--seed", seed, "--size", "256x256", "--scale", "16", "--slice", "0", "-o"])
+            .arg(path)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", stderr_of(&out));
+    }
+    // Two seeds, two formats, one report; the plots folder is created.
+    let plots = dir.path().join("plots");
+    let out = noiselab().arg("analyze").args([&a, &b]).args(["--lattice", "16", "--plots"]).arg(&plots).output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("2 fields") && text.contains("node value score") && text.contains("null"), "{text}");
+    for name in ["spectrum.png", "radial.png", "histogram.png", "folded-variance.png"] {
+        let file = fs::File::open(plots.join(name)).unwrap();
+        png::Decoder::new(std::io::BufReader::new(file)).read_info().unwrap();
+    }
+    // JSON: the documented fields, with values (gradient noise is 0 at its nodes).
+    let out = noiselab().arg("analyze").arg(&a).args(["--lattice", "16", "--period", "64", "--json"]).output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["lattice"]["node_value_score"], 0.0);
+    assert!(json["values"]["std"].as_f64().unwrap() > 0.1);
+    assert!(json["spectrum"]["peak_frequency"].as_f64().unwrap() > 0.0);
+    assert!(json["lattice"]["folded_variance"]["folded_variance_cv"].as_f64().unwrap() > 0.2);
+    assert!(json["cyclostationarity"]["cyclo_max_over_null"].as_f64().unwrap() > 2.0);
+    assert!(json["periodicity"]["x"]["rms_ratio"].as_f64().unwrap() > 0.5);
+}
+
+#[test]
+fn analyze_rejects_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.npy");
+    assert_one_line_error(&noiselab().arg("analyze").arg(&missing).output().unwrap(), "missing.npy");
+    let junk = dir.path().join("junk.npy");
+    fs::write(&junk, b"not numpy").unwrap();
+    assert_one_line_error(&noiselab().arg("analyze").arg(&junk).output().unwrap(), "junk.npy");
+    let odd = dir.path().join("odd.f32");
+    fs::write(&odd, vec![0u8; 4 * 300]).unwrap();
+    assert_one_line_error(&noiselab().arg("analyze").arg(&odd).output().unwrap(), "odd.f32");
+    let big = dir.path().join("big.npy");
+    let small = dir.path().join("small.npy");
+    for (size, path) in [("64x64", &big), ("32x32", &small)] {
+        noiselab().args(["render", "value", "--size", size, "-o"]).arg(path).assert().success();
+    }
+    assert_one_line_error(&noiselab().arg("analyze").args([&big, &small]).output().unwrap(), "differ in size");
+    for bad in [["--lattice", "0"], ["--lattice", "-4"], ["--period", "0"], ["--lattice-offset", "a,b"]] {
+        assert_one_line_error(&noiselab().arg("analyze").arg(&big).args(bad).output().unwrap(), bad[0]);
+    }
+    assert_one_line_error(&noiselab().arg("analyze").output().unwrap(), "FILES");
+}
+
+#[test]
+fn report_renders_every_kind_and_the_checked_in_page_is_current() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = noiselab().args(["report", "--size", "64", "--seeds", "1", "--out"]).arg(dir.path()).output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let fresh = fs::read_to_string(dir.path().join("quality.md")).unwrap();
+    let labels = |page: &str| -> Vec<String> {
+        page.lines()
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| noise") && !l.starts_with("| *"))
+            .map(|l| l.split('|').nth(1).unwrap().trim().to_string())
+            .collect()
+    };
+    let rows = labels(&fresh);
+    assert!(rows.len() >= 2 * 6, "{rows:?}");
+    for kind in ["classic", "improved", "simplex", "value", "modified"] {
+        assert!(rows.iter().any(|r| r.starts_with(kind)), "{kind} missing from the report");
+    }
+    // Every picture the page names exists.
+    for line in fresh.lines().filter(|l| l.contains("](quality/")) {
+        for part in line.split("](").skip(1) {
+            let file = part.split(')').next().unwrap();
+            assert!(dir.path().join(file).exists(), "{file}");
+        }
+    }
+    // The published page lists the same rows (regenerate it with the README's command when kinds change).
+    let published = fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/quality.md")).unwrap();
+    assert_eq!(labels(&published).iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>(),
+        rows.iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>());
+}
