@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Value};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -38,6 +38,13 @@ macro_rules! for_every_kind {
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));
         $check!("value", Value::new(0), 4, (-1.0, 1.0));
+        // Sparse convolution is unbounded (std ¼, tails heavier for few impulses):
+        // ±2.5 is ten sigma.
+        $check!("sparse", Sparse::new(0), 1, (-1.2, 1.2));
+        $check!("sparse", Sparse::new(4), 2, (-2.0, 2.0));
+        $check!("sparse", Sparse::new(0).with_impulses(10).unwrap(), 3, (-2.5, 2.5));
+        $check!("sparse", Sparse::new(1).with_impulses(6).unwrap(), 4, (-2.5, 2.5));
+        $check!("sparse-gaussian", Sparse::new(2).with_kernel(Kernel::gaussian()).with_impulses(8).unwrap(), 2, (-2.0, 2.0));
     };
 }
 

@@ -5,6 +5,7 @@ pub mod improved;
 pub mod modified;
 pub mod simplex;
 pub mod simplex_n;
+pub mod sparse;
 pub mod value;
 
 use crate::lanes::{lerp, Lanes};
