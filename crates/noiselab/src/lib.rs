@@ -66,7 +66,7 @@ pub use kinds::improved::{Improved, ImprovedVariant};
 pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
 pub use kinds::simplex::Simplex;
 pub use kinds::simplex_n::{SimplexCost, SimplexN};
-pub use kinds::sparse::{Kernel, KernelError, Normalisation, Profile, Sparse, SparseError, Values};
+pub use kinds::sparse::{Kernel, KernelError, Normalisation, Profile, Sparse, SparseError, SparseTurbulence, SplatError, Values};
 pub use kinds::value::Value;
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};
 

@@ -12,6 +12,12 @@ use crate::hash::hash_cell;
 use crate::lanes::{Elem, IntLanes, Lanes};
 use crate::noise::Noise;
 
+mod splat;
+mod turbulence;
+
+pub use splat::SplatError;
+pub use turbulence::SparseTurbulence;
+
 /// The paper's generator (its Eq. 1): `x ← (3125·x + 49) mod 2³²`, seed 1.
 const LCG_A: u32 = 3125;
 const LCG_C: u32 = 49;
