@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Simplex, SimplexN, Value};
+use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Kernel, Modified, ModifiedHash, ModifiedTexture, Simplex, SimplexN, Sparse, Value};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -11,6 +11,17 @@ pub struct Params {
     pub dims: usize,
     pub seed: u32,
     pub variant: Option<String>,
+    /// Sparse convolution: impulses per cell.
+    pub impulses: Option<u32>,
+    /// Sparse convolution: kernel name.
+    pub kernel: Option<String>,
+}
+
+impl Params {
+    /// Dimensions and seed, every option at its default.
+    pub fn new(dims: usize, seed: u32) -> Params {
+        Params { dims, seed, variant: None, impulses: None, kernel: None }
+    }
 }
 
 /// One registered kind.
@@ -23,7 +34,9 @@ pub struct KindSpec {
     pub variants: &'static [(&'static str, &'static str)],
     /// The documented output range per dimension, used to map values to pixels.
     pub range: fn(usize) -> (f64, f64),
-    build: fn(&Params, &str) -> Field,
+    /// Kind-specific options it accepts (`impulses`, `kernel`).
+    pub options: &'static [&'static str],
+    build: fn(&Params, &str) -> Result<Field, String>,
 }
 
 /// A noise of run-time dimension.
@@ -86,41 +99,61 @@ macro_rules! field {
     };
 }
 
-fn improved(p: &Params, variant: &str) -> Field {
+fn improved(p: &Params, variant: &str) -> Result<Field, String> {
     let v = if variant == "2002" { ImprovedVariant::Original2002 } else { ImprovedVariant::Current };
-    field!(Improved::new(p.seed).with_variant(v), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+    Ok(field!(Improved::new(p.seed).with_variant(v), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
 }
 
 
 
 
-fn classic(p: &Params, _: &str) -> Field {
-    field!(Classic::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3])
+fn classic(p: &Params, _: &str) -> Result<Field, String> {
+    Ok(field!(Classic::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3]))
 }
 
-fn simplex(p: &Params, _: &str) -> Field {
-    field!(Simplex::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+fn simplex(p: &Params, _: &str) -> Result<Field, String> {
+    Ok(field!(Simplex::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
 }
 
-fn modified(p: &Params, variant: &str) -> Field {
+fn modified(p: &Params, variant: &str) -> Result<Field, String> {
     let computed = |hash| Modified::new(p.seed).with_hash(hash);
-    match variant {
+    Ok(match variant {
         "wide" => field!(computed(ModifiedHash::Wide), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]),
         "textured" => {
             let t = ModifiedTexture::new(&computed(ModifiedHash::Mod61));
             field!(t, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
         }
         _ => field!(computed(ModifiedHash::Mod61), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]),
-    }
+    })
 }
 
-fn simplex_n(p: &Params, _: &str) -> Field {
+/// Kernels `--kernel` accepts for sparse convolution.
+pub const SPARSE_KERNELS: &[&str] = &["cubic", "gaussian"];
+
+/// The sparse convolution noise `params` describe.
+pub fn sparse_noise(p: &Params) -> Result<Sparse, String> {
+    let kernel = match p.kernel.as_deref().unwrap_or("cubic") {
+        "cubic" => Kernel::cubic(),
+        "gaussian" => Kernel::gaussian(),
+        other => return Err(format!("--kernel must be one of {}, got {other}", SPARSE_KERNELS.join(", "))),
+    };
+    let n = p.impulses.unwrap_or(20);
+    let noise = Sparse::new(p.seed).with_impulses(n).map_err(|_| format!("--impulses must be 1..={}, got {n}", Sparse::MAX_IMPULSES))?;
+    Ok(noise.with_kernel(kernel))
+}
+
+fn sparse(p: &Params, _: &str) -> Result<Field, String> {
+    let n = sparse_noise(p)?;
+    Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
+}
+
+fn simplex_n(p: &Params, _: &str) -> Result<Field, String> {
     let n = SimplexN::new(p.seed);
-    field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4, 5 => D5, 6 => D6, 7 => D7, 8 => D8])
+    Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4, 5 => D5, 6 => D6, 7 => D7, 8 => D8]))
 }
 
-fn value(p: &Params, _: &str) -> Field {
-    field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4])
+fn value(p: &Params, _: &str) -> Result<Field, String> {
+    Ok(field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
 }
 
 
@@ -131,6 +164,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Perlin 1985 gradient noise (cubic s-curve, 256-entry permutation), reference-exact",
         dims: 1..=3,
         default_dims: 3,
+        options: &[],
         variants: &[],
         range: |d| {
             let b = (d as f64 / 4.0).sqrt();
@@ -143,6 +177,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Perlin 2002 improved noise (quintic fade, edge gradients), reference-exact",
         dims: 1..=4,
         default_dims: 3,
+        options: &[],
         variants: &[
             ("current", "the reference gradient as it stands today"),
             ("2002", "the gradient as first published in 2002"),
@@ -160,6 +195,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "simplex noise, Gustavson's 2012 reference (2D-4D) and simplexnoise1234 (1D), reference-exact",
         dims: 1..=4,
         default_dims: 3,
+        options: &[],
         variants: &[],
         range: |_| (-1.0, 1.0),
         build: simplex,
@@ -169,6 +205,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "N-dimensional simplex noise (any dimension, cost O(n^2))",
         dims: 1..=8,
         default_dims: 5,
+        options: &[],
         variants: &[],
         range: |_| (-1.0, 1.0),
         build: simplex_n,
@@ -178,6 +215,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "lattice value noise with quintic interpolation",
         dims: 1..=4,
         default_dims: 3,
+        options: &[],
         variants: &[],
         range: |_| (-1.0, 1.0),
         build: value,
@@ -187,6 +225,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Olano 2005 modified noise: table-free hash, exact zero slices",
         dims: 1..=4,
         default_dims: 3,
+        options: &[],
         variants: &[
             ("mod61", "squaring modulo 61, period 61 cells (Olano)"),
             ("wide", "32-bit mixing hash with the same structure, no short period"),
@@ -198,6 +237,16 @@ pub static KINDS: &[KindSpec] = &[
             _ => (-1.0, 1.0),
         },
         build: modified,
+    },
+    KindSpec {
+        name: "sparse",
+        summary: "Sparse convolution noise (Frisvad & Wyvill 2007): random impulses, cubic kernel, no lattice artefacts; --impulses N (20), --kernel cubic|gaussian",
+        dims: 1..=4,
+        default_dims: 3,
+        options: &["impulses", "kernel"],
+        variants: &[],
+        range: |_| (-1.0, 1.0),
+        build: sparse,
     },
 ];
 
@@ -233,6 +282,11 @@ impl KindSpec {
                 }
             },
         };
-        Ok((self.build)(params, variant))
+        for (given, option) in [(params.impulses.is_some(), "impulses"), (params.kernel.is_some(), "kernel")] {
+            if given && !self.options.contains(&option) {
+                return Err(format!("--{option} does not apply to {}", self.name));
+            }
+        }
+        (self.build)(params, variant)
     }
 }

@@ -1,7 +1,9 @@
 //! `noiselab render`: a 2D window of a noise, written atomically.
 
 use crate::output::{Format, Image};
-use crate::registry::Field;
+use crate::registry::{self, Field};
+use crate::Method;
+use noiselab::{Grid, Sparse};
 use crate::RenderArgs;
 
 /// Most pixels one render may have (1 GiB of f32 values).
@@ -26,9 +28,54 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     // Open the destination first, so a bad path fails before any work.
     let pending = crate::output::Pending::create(&args.output, args.force)?;
 
-    let values = window(&field, dims, args.origin, &slice, 1.0 / args.scale, (width, height))?;
+    let sparse = spec.name == "sparse";
+    if args.method.is_some() && !sparse {
+        return Err(format!("--method applies to sparse only, not {}", spec.name));
+    }
+    let step = 1.0 / args.scale;
+    let values = if sparse && dims >= 2 && args.method != Some(Method::Gather) {
+        let noise = registry::sparse_noise(&args.noise.params(dims))?;
+        splat(&noise, dims, args.origin, &slice, step, (width, height))?
+    } else {
+        window(&field, dims, args.origin, &slice, step, (width, height))?
+    };
     let image = Image { width, height, values: &values, range: (spec.range)(dims) };
     pending.finish(|w| format.write(w, &image, args.bits))
+}
+
+/// The same window as [`window`], rendered by splatting sparse convolution
+/// impulses.
+pub fn splat(
+    noise: &Sparse,
+    dims: usize,
+    (x, y): (f64, f64),
+    slice: &[f64],
+    step: f64,
+    (width, height): (usize, usize),
+) -> Result<Vec<f32>, String> {
+    fn go<const D: usize>(n: &Sparse, origin: &[f64], step: f64, (w, h): (usize, usize)) -> Result<Vec<f32>, String>
+    where
+        Sparse: noiselab::Noise<D>,
+    {
+        let mut o = [0.0; D];
+        o.copy_from_slice(&origin[..D]);
+        let mut s = [0.0; D];
+        (s[0], s[1]) = (step, step);
+        let mut size = [1; D];
+        (size[0], size[1]) = (w, h);
+        let mut out = vec![0f32; w * h];
+        n.splat_grid(&Grid::new(o, s, size), &mut out).map_err(|e| e.to_string())?;
+        Ok(out)
+    }
+    let mut origin = vec![x, y];
+    origin.extend(slice.iter().copied());
+    origin.resize(dims.max(2), 0.0);
+    match dims {
+        2 => go::<2>(noise, &origin, step, (width, height)),
+        3 => go::<3>(noise, &origin, step, (width, height)),
+        4 => go::<4>(noise, &origin, step, (width, height)),
+        d => Err(format!("splatting renders 2D to 4D sparse noise, not {d}D")),
+    }
 }
 
 /// Pixel (row j, column i) = noise(X + i·step, Y + j·step, slice…): the

@@ -53,7 +53,7 @@ fn rows() -> Vec<Row> {
 /// Seed `s` of a row at `px` pixels per cell.
 fn render(row: &Row, seed: u32, px: f64, size: usize) -> Result<Vec<f32>, String> {
     let spec = registry::find(row.kind)?;
-    let params = Params { dims: 3, seed, variant: row.variant.map(str::to_string) };
+    let params = Params { variant: row.variant.map(str::to_string), ..Params::new(3, seed) };
     let field = spec.build(&params)?;
     crate::render::window(&field, 3, (0.0, 0.0), &[row.z], 1.0 / px, (size, size))
 }
@@ -129,8 +129,77 @@ pub fn run(args: &ReportArgs) -> Result<(), String> {
         report,
     });
 
-    let page = page(&measured, size, seeds);
+    let tradeoff = sparse_tradeoff(size, seeds, &pictures)?;
+    let page = page(&measured, size, seeds) + &tradeoff;
     Pending::create(&args.out.join("quality.md"), true)?.finish(|w| w.write_all(page.as_bytes()))
+}
+
+/// The paper's Figure 7 as numbers: quality against impulses per cell,
+/// with the cost of each measured now (both renderers, this machine).
+fn sparse_tradeoff(size: usize, seeds: usize, pictures: &Path) -> Result<String, String> {
+    use std::time::Instant;
+    let px = 32.0;
+    let grid = noiselab::Grid::new([0.0, 0.0, 0.5], [1.0 / px, 1.0 / px, 0.0], [size, size, 1]);
+    let mut s = String::new();
+    let _ = writeln!(s, "\n## Sparse convolution: quality against quantity (Frisvad & Wyvill's Figure 7)\n");
+    let _ = writeln!(
+        s,
+        "Slices z = 0.5 of 3D sparse convolution noise (cubic kernel), {size}², {px} px per cell, {seeds} seeds. \
+         Times are one render of one seed on this machine, all cores, measured when this page was generated \
+         (criterion benchmarks: `cargo bench --manifest-path benches/Cargo.toml`).\n"
+    );
+    let _ = writeln!(s, "| impulses per cell | picture | excess kurtosis | anisotropy (dB) | axis-line ratio | folded-variance CV (null) | cyclo max/null | splat (ms) | gather (ms) | gather/splat |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    for n in [10u32, 20, 30] {
+        let params = |seed| Params { impulses: Some(n), ..Params::new(3, seed) };
+        let mut fields = Vec::new();
+        let mut first = Vec::new();
+        for seed in 1..=seeds as u32 {
+            let noise = registry::sparse_noise(&params(seed))?;
+            let mut out = vec![0f32; size * size];
+            noise.splat_grid(&grid, &mut out).map_err(|e| e.to_string())?;
+            if seed == 1 {
+                first = out.clone();
+            }
+            fields.push(samples(&out, size)?);
+        }
+        let r = analyze(&fields, &Options { lattice: Some(Lattice { period: px, offset: (0, 0) }), period: None })
+            .map_err(|e| e.to_string())?;
+        let noise = registry::sparse_noise(&params(1))?;
+        let mut out = vec![0f32; size * size];
+        let t = Instant::now();
+        noise.splat_grid(&grid, &mut out).map_err(|e| e.to_string())?;
+        let splat = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        noiselab::Noise::<3>::fill_grid(&noise, &grid, &mut out).map_err(|e| e.to_string())?;
+        let gather = t.elapsed().as_secs_f64();
+        let thumb = THUMB.min(size);
+        let crop: Vec<f32> = (0..thumb * thumb).map(|k| first[(k / thumb) * size + k % thumb]).collect();
+        let file = format!("sparse-n{n}");
+        let image = Image { width: thumb, height: thumb, values: &crop, range: (-1.0, 1.0) };
+        Pending::create(&pictures.join(format!("{file}.png")), true)?.finish(|w| Format::Png.write(w, &image, 8))?;
+        let fv = r.lattice.as_ref().and_then(|l| l.folded_variance.as_ref());
+        let _ = writeln!(
+            s,
+            "| {n} | ![n = {n}](quality/{file}.png) | {:.3} | {:+.2} | {:.2} | {} | {:.2} | {:.1} | {:.1} | {:.1} |",
+            r.values.excess_kurtosis,
+            r.anisotropy.excess_db,
+            r.axis.axis_ratio,
+            fv.map_or("–".into(), |f| format!("{:.4} ({:.4})", f.folded_variance_cv, f.null_cv)),
+            r.cyclostationarity.cyclo_max_over_null,
+            splat * 1e3,
+            gather * 1e3,
+            gather / splat
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nMore impulses make the noise more Gaussian (excess kurtosis towards 0) at proportional cost; \
+         no setting shows a lattice (cyclostationarity ≈ 1, no lines). The folded-variance null assumes \
+         Gaussian values; with excess kurtosis κ its sampling CV grows by √(1 + κ/2) (1.35× at n = 10), \
+         which is what the n = 10 row shows."
+    );
+    Ok(s)
 }
 
 /// What a row's numbers say, by the quality note's suggested thresholds.

@@ -247,3 +247,53 @@ fn report_renders_every_kind_and_the_checked_in_page_is_current() {
     assert_eq!(labels(&published).iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>(),
         rows.iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>());
 }
+
+/// Little-endian f32 payload of an `.npy` written by `render`.
+fn npy_values(path: &std::path::Path) -> Vec<f32> {
+    let bytes = fs::read(path).unwrap();
+    let header = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    bytes[10 + header..].chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+}
+
+#[test]
+fn sparse_renders_the_same_image_by_splatting_and_gathering() {
+    let dir = tempfile::tempdir().unwrap();
+    for (dims, slice) in [("2", None), ("3", Some("-0.3")), ("4", Some("0.5,1.25"))] {
+        let mut images = Vec::new();
+        for method in ["splat", "gather"] {
+            let path = dir.path().join(format!("{dims}-{method}.npy"));
+            let mut cmd = noiselab();
+            cmd.args(["render", "sparse", "--dims", dims, "--impulses", "12", "--size", "96x64", "--scale", "24"])
+                .args(["--origin", "-1.5,-0.75", "--method", method, "-o"])
+                .arg(&path);
+            if let Some(s) = slice {
+                cmd.args(["--slice", s]);
+            }
+            let out = cmd.output().unwrap();
+            assert!(out.status.success(), "{}", stderr_of(&out));
+            images.push(npy_values(&path));
+        }
+        let worst = images[0].iter().zip(&images[1]).map(|(a, b)| (a - b).abs()).fold(0f32, f32::max);
+        assert!(worst < 1e-5, "{dims}D: splat and gather differ by {worst}");
+    }
+    // The Gaussian reference kernel, and sampling with options.
+    let out = noiselab().args(["sample", "sparse", "--kernel", "gaussian", "--impulses", "30"]).write_stdin("0.3 0.4 0.5\n").output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let v: f64 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
+    let n = noiselab::Sparse::new(0).with_impulses(30).unwrap().with_kernel(noiselab::Kernel::gaussian());
+    assert_eq!(v, noiselab::Noise::get(&n, [0.3, 0.4, 0.5]));
+}
+
+#[test]
+fn sparse_options_are_validated() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let run = |args: &[&str]| noiselab().args(args).arg("-o").arg(&out).output().unwrap();
+    assert_one_line_error(&run(&["render", "sparse", "--impulses", "0"]), "--impulses");
+    assert_one_line_error(&run(&["render", "sparse", "--impulses", "-3"]), "--impulses");
+    assert_one_line_error(&run(&["render", "sparse", "--kernel", "box"]), "--kernel");
+    assert_one_line_error(&run(&["render", "value", "--impulses", "10"]), "--impulses");
+    assert_one_line_error(&run(&["render", "improved", "--method", "splat"]), "--method");
+    assert_one_line_error(&run(&["render", "sparse", "--method", "scatter"]), "--method");
+    assert!(!out.exists());
+}
