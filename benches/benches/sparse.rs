@@ -3,7 +3,7 @@
 //! threaded: the library is built without `parallel` here.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use noiselab::{Improved, Noise, Sparse};
+use noiselab::{Grid, Improved, Noise, Sparse};
 use noiselab_benches::window;
 
 fn sparse(c: &mut Criterion) {
@@ -20,6 +20,12 @@ fn sparse(c: &mut Criterion) {
     }
     let improved = Improved::new(1);
     group.bench_function("improved 2D (reference)", |b| b.iter(|| Noise::<2>::fill_grid(&improved, &grid, &mut out).unwrap()));
+    // Solid noise: a slice z = 0.5 through 3D.
+    let slice = Grid::new([0.0, 0.0, 0.5], [1.0 / 32.0, 1.0 / 32.0, 0.0], [1024, 1024, 1]);
+    let noise = Sparse::new(1);
+    group.bench_function("splat 3D slice/20", |b| b.iter(|| noise.splat_grid(&slice, &mut out).unwrap()));
+    group.bench_function("gather 3D slice/20", |b| b.iter(|| Noise::<3>::fill_grid(&noise, &slice, &mut out).unwrap()));
+    group.bench_function("improved 3D slice (reference)", |b| b.iter(|| Noise::<3>::fill_grid(&improved, &slice, &mut out).unwrap()));
     group.finish();
 }
 

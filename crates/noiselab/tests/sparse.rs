@@ -167,3 +167,48 @@ fn bad_parameters_are_typed_errors() {
     n.splat_grid(&Grid::new([f64::NAN, 0.0], [0.1, 0.1], [2, 2]), &mut out).unwrap();
     assert!(out.iter().all(|v| v.is_nan()));
 }
+
+#[test]
+fn tiled_noise_repeats_exactly() {
+    fn check<const D: usize>(n: &Sparse, period: [u32; 4])
+    where
+        Sparse: Noise<D>,
+    {
+        let mut rng = SplitMix64(D as u64 + 40);
+        for _ in 0..2000 {
+            // Multiples of 1/64 keep p and p + period exact in f32 and f64.
+            let mut p = [0f64; D];
+            for c in p.iter_mut() {
+                *c = ((rng.next() >> 40) % 4096) as f64 / 64.0 - 32.0;
+            }
+            for k in 0..D {
+                let mut q = p;
+                q[k] += period[k] as f64;
+                assert_eq!(n.get(p).to_bits(), n.get(q).to_bits(), "{D}D axis {k} at {p:?}");
+                let (pf, qf) = (p.map(|c| c as f32), q.map(|c| c as f32));
+                assert_eq!(n.get_f32(pf).to_bits(), n.get_f32(qf).to_bits());
+            }
+        }
+    }
+    for period in [[3, 5, 7, 2], [1, 1, 1, 1], [300, 257, 11, 4]] {
+        let n = Sparse::new(6).with_impulses(8).unwrap().with_period(period).unwrap();
+        check::<1>(&n, period);
+        check::<2>(&n, period);
+        check::<3>(&n, period);
+        check::<4>(&n, period);
+    }
+    // A tile rendered twice side by side is seamless: the splatted window
+    // repeats with the period in pixels.
+    let n = Sparse::new(1).with_period([4, 3, 0, 0]).unwrap();
+    let px = 16;
+    let (w, h) = (8 * px, 6 * px);
+    let grid = Grid::new([0.0, 0.0], [1.0 / px as f64; 2], [w, h]);
+    let mut out = vec![0f32; w * h];
+    n.splat_grid(&grid, &mut out).unwrap();
+    for j in 0..h {
+        for i in 0..w {
+            assert_eq!(out[j * w + i], out[(j % (3 * px)) * w + i % (4 * px)], "pixel ({i}, {j})");
+        }
+    }
+    assert_eq!(Sparse::new(0).with_period([1 << 31, 0, 0, 0]).unwrap_err(), SparseError::Period(1 << 31));
+}

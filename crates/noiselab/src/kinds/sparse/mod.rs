@@ -354,6 +354,8 @@ pub struct Sparse {
     kernel: Kernel,
     values: Values,
     normalisation: Normalisation,
+    /// Cells per period on each axis (0 = not periodic).
+    period: [i32; 4],
 }
 
 /// Why a sparse noise cannot be built.
@@ -361,12 +363,15 @@ pub struct Sparse {
 pub enum SparseError {
     /// Impulses per cell must be at least 1 (and at most 10 000).
     Impulses(u32),
+    /// A period must be a positive number of cells (at most 2³⁰).
+    Period(u32),
 }
 
 impl fmt::Display for SparseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SparseError::Impulses(n) => write!(f, "impulses per cell must be 1..=10000, got {n}"),
+            SparseError::Period(p) => write!(f, "a period must be 1..=2^30 cells, got {p}"),
         }
     }
 }
@@ -377,7 +382,14 @@ impl Sparse {
 
     /// The paper's noise with `n = 20` impulses per cell and the cubic kernel.
     pub fn new(seed: u32) -> Sparse {
-        Sparse { seed, impulses: 20, kernel: Kernel::cubic(), values: Values::Uniform, normalisation: Normalisation::Variance }
+        Sparse {
+            seed,
+            impulses: 20,
+            kernel: Kernel::cubic(),
+            values: Values::Uniform,
+            normalisation: Normalisation::Variance,
+            period: [0; 4],
+        }
     }
 
     /// With `n` impulses per cell.
@@ -386,6 +398,18 @@ impl Sparse {
             return Err(SparseError::Impulses(n));
         }
         self.impulses = n;
+        Ok(self)
+    }
+
+    /// Tiled: periodic with `period[k]` cells along axis k (0 leaves an axis
+    /// unbounded; axes beyond the noise's dimension are ignored). Cell
+    /// indices wrap before they are hashed, so the tile repeats exactly and
+    /// has the statistics of the untiled noise.
+    pub fn with_period(mut self, period: [u32; 4]) -> Result<Sparse, SparseError> {
+        if let Some(&p) = period.iter().find(|&&p| p > 1 << 30) {
+            return Err(SparseError::Period(p));
+        }
+        self.period = period.map(|p| p as i32);
         Ok(self)
     }
 
@@ -454,6 +478,12 @@ impl Sparse {
     #[inline(always)]
     pub(crate) fn impulses_of<L: Lanes, const D: usize>(&self, cell: [L::Int; D], mut f: impl FnMut([L; D], L)) {
         let per_cell = self.impulses as i32 * (D as i32 + 1);
+        let mut cell = cell;
+        for (c, &p) in cell.iter_mut().zip(&self.period) {
+            if p > 0 {
+                *c = c.rem_euclid(p);
+            }
+        }
         let mut x = lcg_at(hash_cell(cell, self.seed).mul(L::Int::splat(per_cell)));
         let half = self.impulses / 2;
         for k in 0..self.impulses {
@@ -495,6 +525,11 @@ impl Sparse {
             }
         }
         s
+    }
+
+    /// Whether the kernel is radial in input space (no anisotropy map).
+    pub(crate) fn is_isotropic(&self) -> bool {
+        self.kernel.map.is_none()
     }
 
     /// `w` at squared kernel distance `d2`.
