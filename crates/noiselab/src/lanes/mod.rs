@@ -100,6 +100,12 @@ pub trait Lanes:
     }
     /// Per lane: `a` where `m`, else `b`.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// Whether any lane of `m` is set (for loops that run until every lane
+    /// is done; the result per lane must not depend on extra iterations).
+    fn any(m: Self::Mask) -> bool;
+    /// Per lane: `self` raised to `e`, by libm's software `pow`/`powf`
+    /// (the same function in every lane type, so lanes still agree).
+    fn powf(self, e: Self) -> Self;
 
     /// Convert an integral value (e.g. the result of [`Lanes::floor`]) to an
     /// integer, wrapping modulo 2³² (exact for |x| < 2⁶³; NaN gives 0).

@@ -109,7 +109,7 @@ impl IntLanes for i32 {
 }
 
 macro_rules! scalar_lanes {
-    ($t:ty, $floor:path, $sqrt:path) => {
+    ($t:ty, $floor:path, $sqrt:path, $pow:path) => {
         impl Lanes for $t {
             type Elem = $t;
             type Int = i32;
@@ -165,6 +165,14 @@ macro_rules! scalar_lanes {
                 self <= o
             }
             #[inline(always)]
+            fn any(m: bool) -> bool {
+                m
+            }
+            #[inline(always)]
+            fn powf(self, e: Self) -> Self {
+                $pow(self, e)
+            }
+            #[inline(always)]
             fn select(m: bool, a: Self, b: Self) -> Self {
                 if m {
                     a
@@ -189,5 +197,5 @@ macro_rules! scalar_lanes {
     };
 }
 
-scalar_lanes!(f32, math::floor32, math::sqrt32);
-scalar_lanes!(f64, math::floor64, math::sqrt64);
+scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf);
+scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow);

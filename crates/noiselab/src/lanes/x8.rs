@@ -135,6 +135,14 @@ impl Lanes for F32x8 {
         M32x8(map!(|i| mask(self.0[i] <= o.0[i])))
     }
     #[inline(always)]
+    fn any(m: M32x8) -> bool {
+        m.0.iter().any(|&v| v != 0)
+    }
+    #[inline(always)]
+    fn powf(self, e: Self) -> Self {
+        F32x8(map!(|i| libm::powf(self.0[i], e.0[i])))
+    }
+    #[inline(always)]
     fn select(m: M32x8, a: Self, b: Self) -> Self {
         // Bitwise blend: the form LLVM maps to one blend instruction.
         F32x8(map!(|i| f32::from_bits(

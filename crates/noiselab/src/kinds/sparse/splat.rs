@@ -183,7 +183,7 @@ impl Sparse {
                     if left <= 0.0 {
                         return;
                     }
-                    left.sqrt() + 1e-6
+                    crate::lanes::math::sqrt64(left) + 1e-6
                 } else {
                     reach + 1e-6
                 };
