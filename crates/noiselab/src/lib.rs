@@ -68,6 +68,7 @@ pub use kinds::simplex::Simplex;
 pub use kinds::simplex_n::{SimplexCost, SimplexN};
 pub use kinds::sparse::{Kernel, KernelError, Normalisation, Profile, Sparse, SparseError, SparseTurbulence, SplatError, Values};
 pub use kinds::value::Value;
+pub use kinds::worley::{CellOutput, Metric, Nearest, Worley, WorleyError};
 pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};
 
 /// The README's code blocks, compiled and run as doctests.

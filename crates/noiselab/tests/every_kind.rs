@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -38,6 +38,14 @@ macro_rules! for_every_kind {
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));
         $check!("value", Value::new(0), 4, (-1.0, 1.0));
+        $check!("worley", Worley::new(0), 1, (0.0, 1.0));
+        $check!("worley", Worley::new(2), 2, (0.0, 2f64.sqrt()));
+        $check!("worley", Worley::new(0), 3, (0.0, 3f64.sqrt()));
+        $check!("worley", Worley::new(0), 4, (0.0, 2.0));
+        $check!("worley-f2-f1", Worley::new(1).with_output(CellOutput::F2MinusF1), 2, (0.0, 1.5));
+        $check!("worley-cells", Worley::new(1).with_output(CellOutput::CellValue), 3, (-1.0, 1.0));
+        $check!("worley-manhattan-f3", Worley::new(3).with_metric(Metric::Manhattan).unwrap().with_output(CellOutput::F3), 2, (0.0, 3.0));
+        $check!("worley-minkowski", Worley::new(3).with_metric(Metric::Minkowski(3.0)).unwrap(), 2, (0.0, 1.5));
         // Sparse convolution is unbounded (std ¼, tails heavier for few impulses):
         // ±2.5 is ten sigma.
         $check!("sparse", Sparse::new(0), 1, (-1.2, 1.2));

@@ -7,6 +7,7 @@ pub mod simplex;
 pub mod simplex_n;
 pub mod sparse;
 pub mod value;
+pub mod worley;
 
 use crate::lanes::{lerp, Lanes};
 
