@@ -53,9 +53,9 @@ where
         }
         let nearest = w.nearest(p);
         let (want, f1_point) = brute_force(&w, metric, p, 4);
-        for k in 0..4 {
-            let err = (nearest.distance[k] - want[k]).abs();
-            assert!(err <= 1e-12 * (1.0 + want[k]), "{metric:?} {D}D F{} at {p:?}: {} vs brute force {}", k + 1, nearest.distance[k], want[k]);
+        for (k, (got, want)) in nearest.distance.iter().zip(want).enumerate() {
+            let err = (got - want).abs();
+            assert!(err <= 1e-12 * (1.0 + want), "{metric:?} {D}D F{} at {p:?}: {got} vs brute force {want}", k + 1);
         }
         assert_eq!(nearest.point[0].map(|c| (c * 1e9).round()), f1_point.map(|c| (c * 1e9).round()));
         // The noise's outputs are these distances.
