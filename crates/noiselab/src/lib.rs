@@ -61,6 +61,7 @@ pub mod lanes;
 mod noise;
 
 pub use grid::{Grid, GridError, SimdLevel};
+pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;
 pub use kinds::improved::{Improved, ImprovedVariant};
 pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};

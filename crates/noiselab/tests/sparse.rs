@@ -210,5 +210,5 @@ fn tiled_noise_repeats_exactly() {
             assert_eq!(out[j * w + i], out[(j % (3 * px)) * w + i % (4 * px)], "pixel ({i}, {j})");
         }
     }
-    assert_eq!(Sparse::new(0).with_period([1 << 31, 0, 0, 0]).unwrap_err(), SparseError::Period(1 << 31));
+    assert_eq!(Sparse::new(0).with_period([1 << 31, 0, 0, 0]).unwrap_err(), noiselab::PeriodError(1 << 31));
 }

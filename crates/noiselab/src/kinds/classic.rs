@@ -4,6 +4,7 @@
 //! The tables are built in Rust exactly as the C `init()` builds them from
 //! glibc's `random()`, so no libc and no table file are needed.
 
+use super::{Period, PeriodError};
 use crate::lanes::{lerp, math::sqrt64, Elem, IntLanes, Lanes};
 use crate::noise::Noise;
 use alloc::sync::Arc;
@@ -136,12 +137,20 @@ impl Tables {
 pub struct Classic {
     tables: Arc<Tables>,
     seed: u32,
+    period: Period,
 }
 
 impl Classic {
     /// Classic noise with the tables for `seed` (0 = the original program's).
     pub fn new(seed: u32) -> Self {
-        Classic { tables: Arc::new(Tables::new(seed)), seed }
+        Classic { tables: Arc::new(Tables::new(seed)), seed, period: Period::NONE }
+    }
+
+    /// Tiled: periodic with `cells[k]` lattice cells along axis k (0 leaves
+    /// an axis unbounded; any positive count). Untiled values are unchanged.
+    pub fn with_period(mut self, cells: [u32; 4]) -> Result<Self, PeriodError> {
+        self.period = Period::new(cells)?;
+        Ok(self)
     }
 
     /// The seed.
@@ -160,13 +169,21 @@ impl Classic {
     }
 }
 
-/// The C `setup` macro: lower and upper cell (mod 256) and the offsets to them.
+/// The C `setup` macro: lower and upper cell (mod 256) and the offsets to
+/// them. Tiled on `axis`, the cells (x's cell is ⌊x + 4096⌋ − 4096) wrap
+/// into the period before the mod 256.
 #[inline(always)]
-fn setup<L: Lanes>(x: L) -> (L::Int, L::Int, L, L) {
+fn setup<L: Lanes>(x: L, period: Period, axis: usize) -> (L::Int, L::Int, L, L) {
     let t = x + L::cst(4096.0);
     let fl = t.floor();
-    let b0 = fl.to_int_wrapping().and_c(255);
-    let b1 = b0.add_c(1).and_c(255);
+    let cell = fl.to_int_wrapping();
+    let (b0, b1) = if period.is_none() {
+        let b0 = cell.and_c(255);
+        (b0, b0.add_c(1).and_c(255))
+    } else {
+        let c = cell.add_c(-4096);
+        (period.wrap(axis, c).and_c(255), period.wrap(axis, c.add_c(1)).and_c(255))
+    };
     let r0 = t - fl;
     (b0, b1, r0, r0 - L::cst(1.0))
 }
@@ -180,7 +197,7 @@ fn s_curve<L: Lanes>(t: L) -> L {
 impl Noise<1> for Classic {
     #[inline(always)]
     fn sample<L: Lanes>(&self, [x]: [L; 1]) -> L {
-        let (b0, b1, r0, r1) = setup(x);
+        let (b0, b1, r0, r1) = setup(x, self.period, 0);
         let g = &self.tables.g1;
         let u = r0 * Self::g::<L>(g, self.p::<L>(b0));
         let v = r1 * Self::g::<L>(g, self.p::<L>(b1));
@@ -191,8 +208,8 @@ impl Noise<1> for Classic {
 impl Noise<2> for Classic {
     #[inline(always)]
     fn sample<L: Lanes>(&self, [x, y]: [L; 2]) -> L {
-        let (bx0, bx1, rx0, rx1) = setup(x);
-        let (by0, by1, ry0, ry1) = setup(y);
+        let (bx0, bx1, rx0, rx1) = setup(x, self.period, 0);
+        let (by0, by1, ry0, ry1) = setup(y, self.period, 1);
         let (i, j) = (self.p::<L>(bx0), self.p::<L>(bx1));
         let [gx, gy] = &self.tables.g2;
         let at = |b: L::Int, rx: L, ry: L| {
@@ -209,9 +226,9 @@ impl Noise<2> for Classic {
 impl Noise<3> for Classic {
     #[inline(always)]
     fn sample<L: Lanes>(&self, [x, y, z]: [L; 3]) -> L {
-        let (bx0, bx1, rx0, rx1) = setup(x);
-        let (by0, by1, ry0, ry1) = setup(y);
-        let (bz0, bz1, rz0, rz1) = setup(z);
+        let (bx0, bx1, rx0, rx1) = setup(x, self.period, 0);
+        let (by0, by1, ry0, ry1) = setup(y, self.period, 1);
+        let (bz0, bz1, rz0, rz1) = setup(z, self.period, 2);
         let (i, j) = (self.p::<L>(bx0), self.p::<L>(bx1));
         let (b00, b10) = (self.p::<L>(i.add(by0)), self.p::<L>(j.add(by0)));
         let (b01, b11) = (self.p::<L>(i.add(by1)), self.p::<L>(j.add(by1)));

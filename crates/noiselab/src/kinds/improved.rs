@@ -5,7 +5,7 @@
 //! defined as the zero slices of 3D: `n2(x, y) == n3(x, y, 0)` and
 //! `n1(x) == n3(x, 0, 0)` as values (the sign of a zero may differ).
 
-use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, MAX_CORNERS};
+use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, Period, PeriodError, MAX_CORNERS};
 use crate::hash::Permutation;
 use crate::lanes::{cell, IntLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
@@ -40,12 +40,21 @@ pub struct Improved {
     perm: Permutation,
     variant: ImprovedVariant,
     seed: u32,
+    period: Period,
 }
 
 impl Improved {
     /// Improved noise with the permutation for `seed` (0 = reference).
     pub fn new(seed: u32) -> Self {
-        Improved { perm: Permutation::new(seed), variant: ImprovedVariant::Current, seed }
+        Improved { perm: Permutation::new(seed), variant: ImprovedVariant::Current, seed, period: Period::NONE }
+    }
+
+    /// Tiled: periodic with `cells[k]` lattice cells along axis k (0 leaves
+    /// an axis unbounded; any positive count, not only powers of two).
+    /// Untiled values are unchanged.
+    pub fn with_period(mut self, cells: [u32; 4]) -> Result<Self, PeriodError> {
+        self.period = Period::new(cells)?;
+        Ok(self)
     }
 
     /// The same noise with another 3D gradient variant.
@@ -115,16 +124,22 @@ impl Improved {
         &self,
         p: [L; D],
     ) -> ([L::Int; MAX_CORNERS], [[L; D]; MAX_CORNERS], [L; D]) {
-        let (c, f) = cell(p);
-        let c = c.map(|ci| ci.and_c(255));
+        let (cells, f) = cell(p);
+        let c = cells.map(|ci| ci.and_c(255));
+        // Perlin's index of a corner on an axis: (X & 255) + bit, read from
+        // the doubled table; tiled, the corner's cell wraps first.
+        let tiled = !self.period.is_none();
+        let index = |d: usize, bit: i32| {
+            if tiled { self.period.wrap(d, cells[d].add_c(bit)).and_c(255) } else { c[d].add_c(bit) }
+        };
         // 1D and 2D continue Perlin's 3D hash chain with zero coordinates.
         let depth = if D == 4 { 4 } else { 3 };
         let mut hashes = [L::Int::splat(0); MAX_CORNERS];
         let mut offsets = [[L::cst(0.0); D]; MAX_CORNERS];
         for corner in 0..(1 << D) {
-            let mut h = self.perm.at(c[0].add_c(corner_bit(corner, 0)));
+            let mut h = self.perm.at(index(0, corner_bit(corner, 0)));
             for d in 1..depth {
-                let step = if d < D { c[d].add_c(corner_bit(corner, d)) } else { L::Int::splat(0) };
+                let step = if d < D { index(d, corner_bit(corner, d)) } else { L::Int::splat(0) };
                 h = self.perm.at(h.add(step));
             }
             hashes[corner] = h;

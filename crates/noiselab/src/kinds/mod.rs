@@ -9,7 +9,7 @@ pub mod sparse;
 pub mod value;
 pub mod worley;
 
-use crate::lanes::{lerp, Lanes};
+use crate::lanes::{lerp, IntLanes, Lanes};
 
 /// Most corners a lattice cell has (4D).
 pub(crate) const MAX_CORNERS: usize = 16;
@@ -84,4 +84,65 @@ pub(crate) fn finite_or_nan<L: Lanes, const D: usize>(p: [L; D], value: L) -> L 
         poison = poison + (c - c);
     }
     L::select(poison.le(L::cst(0.0)), value, poison)
+}
+
+/// Per-axis tiling periods in lattice cells (0 = that axis is unbounded).
+/// Cell indices are wrapped before they are hashed, so a tiled noise repeats
+/// exactly, has the statistics of the untiled one and costs one remainder
+/// per corner. Axes beyond a noise's dimension are ignored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Period([i32; 4]);
+
+/// A period longer than 2³⁰ cells (the limit keeps wrapped indices exact).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PeriodError(pub u32);
+
+impl core::fmt::Display for PeriodError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "a period must be at most 2^30 cells, got {}", self.0)
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for PeriodError {}
+
+impl Period {
+    /// No axis tiled.
+    pub const NONE: Period = Period([0; 4]);
+
+    /// `cells[k]` cells along axis k (0 = unbounded).
+    pub fn new(cells: [u32; 4]) -> Result<Period, PeriodError> {
+        match cells.iter().find(|&&c| c > 1 << 30) {
+            Some(&c) => Err(PeriodError(c)),
+            None => Ok(Period(cells.map(|c| c as i32))),
+        }
+    }
+
+    /// The periods, in cells.
+    pub fn cells(&self) -> [u32; 4] {
+        self.0.map(|c| c as u32)
+    }
+
+    /// Whether no axis is tiled.
+    pub fn is_none(&self) -> bool {
+        self.0 == [0; 4]
+    }
+
+    /// Cell index `c` on `axis`, wrapped into the period.
+    #[inline(always)]
+    pub(crate) fn wrap<I: IntLanes>(&self, axis: usize, c: I) -> I {
+        match self.0.get(axis) {
+            Some(&p) if p > 0 => c.rem_euclid(p),
+            _ => c,
+        }
+    }
+
+    /// A whole cell, wrapped.
+    #[inline(always)]
+    pub(crate) fn wrap_cell<I: IntLanes, const D: usize>(&self, mut cell: [I; D]) -> [I; D] {
+        for (axis, c) in cell.iter_mut().enumerate() {
+            *c = self.wrap(axis, *c);
+        }
+        cell
+    }
 }

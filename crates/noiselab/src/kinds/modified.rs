@@ -20,7 +20,7 @@
 //! Unconfirmed against the paper: the chaining order, pre-multipliers, the
 //! bit-to-gradient mapping and the output scale.
 
-use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, MAX_CORNERS};
+use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, Period, PeriodError, MAX_CORNERS};
 use crate::hash::fmix32;
 use crate::lanes::{cell, IntLanes, Lanes};
 use alloc::sync::Arc;
@@ -56,13 +56,26 @@ const SCALE: f64 = 0.6;
 pub struct Modified {
     seed: u32,
     hash: ModifiedHash,
+    period: Period,
 }
 
 impl Modified {
     /// Modified noise with the mod-61 hash; `seed` enters the innermost
     /// level of the chain (with mod 61 only `seed mod 61` matters).
     pub fn new(seed: u32) -> Self {
-        Modified { seed, hash: ModifiedHash::Mod61 }
+        Modified { seed, hash: ModifiedHash::Mod61, period: Period::NONE }
+    }
+
+    /// Tiled: periodic with `cells[k]` lattice cells along axis k (0 leaves
+    /// an axis unbounded). The textured evaluation inherits the period.
+    pub fn with_period(mut self, cells: [u32; 4]) -> Result<Self, PeriodError> {
+        self.period = Period::new(cells)?;
+        Ok(self)
+    }
+
+    /// The tiling periods.
+    fn period(&self) -> Period {
+        self.period
     }
 
     /// The same noise with another hash.
@@ -165,6 +178,11 @@ impl ModifiedTexture {
         ModifiedTexture { table: table.into(), computed }
     }
 
+    /// The source noise's tiling periods.
+    fn period(&self) -> Period {
+        self.computed.period
+    }
+
     #[inline(always)]
     fn node_hash<I: IntLanes, const D: usize>(&self, node: [I; D]) -> I {
         // Procedural part: the plane offset from the axes beyond y.
@@ -184,21 +202,21 @@ macro_rules! impl_modified {
         impl Noise<$d> for Modified {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let (v, _, f) = corners(p, |n| self.node_hash(n));
+                let (v, _, f) = corners(p, |n| self.node_hash(self.period().wrap_cell(n)));
                 interpolate(v, f.map(fade5)) * L::cst(SCALE)
             }
         }
         impl Noise<$d> for ModifiedTexture {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let (v, _, f) = corners(p, |n| self.node_hash(n));
+                let (v, _, f) = corners(p, |n| self.node_hash(self.period().wrap_cell(n)));
                 interpolate(v, f.map(fade5)) * L::cst(SCALE)
             }
         }
         impl NoiseGradient<$d> for Modified {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                let (v, g, f) = corners(p, |n| self.node_hash(n));
+                let (v, g, f) = corners(p, |n| self.node_hash(self.period().wrap_cell(n)));
                 let (value, grad) = interpolate_gradient(v, g, f.map(fade5), f.map(fade5_deriv));
                 (value * L::cst(SCALE), grad.map(|c| c * L::cst(SCALE)))
             }

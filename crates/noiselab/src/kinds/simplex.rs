@@ -33,6 +33,10 @@ const GRAD4: [[i32; 32]; 4] = [
 /// * 1D follows Gustavson's `simplexnoise1234.c` and equals that C code in
 ///   `f32` bit for bit. Range ±0.64 in 1D (largest found
 ///   by hill climbing: 0.6328).
+/// * Not tileable, by design: the skewed simplex lattice does not line up
+///   with axis-aligned periods, so there is no `with_period` (asking for one
+///   is a compile-time error rather than a silent seam). Tile with a lattice
+///   kind, [`Sparse`](crate::Sparse) or [`Worley`](crate::Worley).
 /// * Analytic gradients ([`NoiseGradient`]) in 1D–4D, exact wherever the
 ///   noise is differentiable (everywhere but those 3D/4D faces).
 #[derive(Clone, Debug)]

@@ -1,7 +1,7 @@
 //! Value noise: a random value at each lattice node, interpolated with the
 //! quintic fade.
 
-use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, MAX_CORNERS};
+use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, Period, PeriodError, MAX_CORNERS};
 use crate::hash::hash_cell;
 use crate::lanes::{cell, IntLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
@@ -17,12 +17,21 @@ use crate::noise::{Noise, NoiseGradient};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Value {
     seed: u32,
+    period: Period,
 }
 
 impl Value {
     /// Value noise for `seed`.
     pub fn new(seed: u32) -> Self {
-        Value { seed }
+        Value { seed, period: Period::NONE }
+    }
+
+    /// Tiled: periodic with `cells[k]` lattice cells along axis k (0 leaves
+    /// an axis unbounded; any positive count, not only powers of two).
+    /// Untiled values are unchanged.
+    pub fn with_period(mut self, cells: [u32; 4]) -> Result<Self, PeriodError> {
+        self.period = Period::new(cells)?;
+        Ok(self)
     }
 
     /// The seed.
@@ -40,7 +49,7 @@ impl Value {
                 *n = n.add_c(corner_bit(corner, d));
             }
             // Top 24 bits → k ∈ [0, 2²⁴), exact in f32; k/2²³ − 1 ∈ [−1, 1).
-            let k = hash_cell(node, self.seed).shr(8);
+            let k = hash_cell(self.period.wrap_cell(node), self.seed).shr(8);
             *vc = L::from_int(k) * L::cst(1.0 / 8_388_608.0) - L::cst(1.0);
         }
         (v, f)

@@ -4,6 +4,7 @@
 
 use core::fmt;
 
+use super::{Period, PeriodError};
 use crate::hash::{fmix32, hash_cell};
 use crate::lanes::{IntLanes, Lanes};
 use crate::noise::Noise;
@@ -65,8 +66,6 @@ pub enum WorleyError {
     Jitter(f64),
     /// Minkowski p must be finite and ≥ 1.
     MinkowskiP(f64),
-    /// A period must be at most 2³⁰ cells.
-    Period(u32),
 }
 
 impl fmt::Display for WorleyError {
@@ -74,7 +73,6 @@ impl fmt::Display for WorleyError {
         match self {
             WorleyError::Jitter(j) => write!(f, "jitter must be in [0, 1], got {j}"),
             WorleyError::MinkowskiP(p) => write!(f, "Minkowski p must be finite and at least 1, got {p}"),
-            WorleyError::Period(p) => write!(f, "a period must be 1..=2^30 cells, got {p}"),
         }
     }
 }
@@ -112,7 +110,7 @@ pub struct Worley {
     jitter: f64,
     metric: Metric,
     output: CellOutput,
-    period: [i32; 4],
+    period: Period,
 }
 
 /// Constants decorrelating the per-axis hashes of one cell.
@@ -121,7 +119,7 @@ const AXIS_SALT: [i32; 4] = [0x68E3_1DA4, 0x1B56_C4E9_u32 as i32, 0x7F4A_7C15, 0
 impl Worley {
     /// F1, Euclidean, full jitter.
     pub fn new(seed: u32) -> Worley {
-        Worley { seed, jitter: 1.0, metric: Metric::Euclidean, output: CellOutput::F1, period: [0; 4] }
+        Worley { seed, jitter: 1.0, metric: Metric::Euclidean, output: CellOutput::F1, period: Period::NONE }
     }
 
     /// With feature points jittered by `jitter` ∈ [0, 1] (0: a regular grid).
@@ -151,11 +149,8 @@ impl Worley {
     }
 
     /// Tiled with `period[k]` cells along axis k (0 = unbounded).
-    pub fn with_period(mut self, period: [u32; 4]) -> Result<Worley, WorleyError> {
-        if let Some(&p) = period.iter().find(|&&p| p > 1 << 30) {
-            return Err(WorleyError::Period(p));
-        }
-        self.period = period.map(|p| p as i32);
+    pub fn with_period(mut self, cells: [u32; 4]) -> Result<Worley, PeriodError> {
+        self.period = Period::new(cells)?;
         Ok(self)
     }
 
@@ -182,13 +177,8 @@ impl Worley {
 
     /// The hash identifying a cell (wrapped by the period).
     #[inline(always)]
-    fn cell_id<I: IntLanes, const D: usize>(&self, mut cell: [I; D]) -> I {
-        for (c, &p) in cell.iter_mut().zip(&self.period) {
-            if p > 0 {
-                *c = c.rem_euclid(p);
-            }
-        }
-        hash_cell(cell, self.seed)
+    fn cell_id<I: IntLanes, const D: usize>(&self, cell: [I; D]) -> I {
+        hash_cell(self.period.wrap_cell(cell), self.seed)
     }
 
     /// The distance for an offset, in the metric.

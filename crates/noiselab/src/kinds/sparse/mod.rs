@@ -8,6 +8,7 @@ use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::fmt;
 
+use super::{Period, PeriodError};
 use crate::hash::hash_cell;
 use crate::lanes::{Elem, IntLanes, Lanes};
 use crate::noise::Noise;
@@ -354,8 +355,7 @@ pub struct Sparse {
     kernel: Kernel,
     values: Values,
     normalisation: Normalisation,
-    /// Cells per period on each axis (0 = not periodic).
-    period: [i32; 4],
+    period: Period,
 }
 
 /// Why a sparse noise cannot be built.
@@ -363,15 +363,12 @@ pub struct Sparse {
 pub enum SparseError {
     /// Impulses per cell must be at least 1 (and at most 10 000).
     Impulses(u32),
-    /// A period must be a positive number of cells (at most 2³⁰).
-    Period(u32),
 }
 
 impl fmt::Display for SparseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SparseError::Impulses(n) => write!(f, "impulses per cell must be 1..=10000, got {n}"),
-            SparseError::Period(p) => write!(f, "a period must be 1..=2^30 cells, got {p}"),
         }
     }
 }
@@ -388,7 +385,7 @@ impl Sparse {
             kernel: Kernel::cubic(),
             values: Values::Uniform,
             normalisation: Normalisation::Variance,
-            period: [0; 4],
+            period: Period::NONE,
         }
     }
 
@@ -405,11 +402,8 @@ impl Sparse {
     /// unbounded; axes beyond the noise's dimension are ignored). Cell
     /// indices wrap before they are hashed, so the tile repeats exactly and
     /// has the statistics of the untiled noise.
-    pub fn with_period(mut self, period: [u32; 4]) -> Result<Sparse, SparseError> {
-        if let Some(&p) = period.iter().find(|&&p| p > 1 << 30) {
-            return Err(SparseError::Period(p));
-        }
-        self.period = period.map(|p| p as i32);
+    pub fn with_period(mut self, cells: [u32; 4]) -> Result<Sparse, PeriodError> {
+        self.period = Period::new(cells)?;
         Ok(self)
     }
 
@@ -478,12 +472,7 @@ impl Sparse {
     #[inline(always)]
     pub(crate) fn impulses_of<L: Lanes, const D: usize>(&self, cell: [L::Int; D], mut f: impl FnMut([L; D], L)) {
         let per_cell = self.impulses as i32 * (D as i32 + 1);
-        let mut cell = cell;
-        for (c, &p) in cell.iter_mut().zip(&self.period) {
-            if p > 0 {
-                *c = c.rem_euclid(p);
-            }
-        }
+        let cell = self.period.wrap_cell(cell);
         let mut x = lcg_at(hash_cell(cell, self.seed).mul(L::Int::splat(per_cell)));
         let half = self.impulses / 2;
         for k in 0..self.impulses {
