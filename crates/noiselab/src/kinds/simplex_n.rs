@@ -29,9 +29,10 @@ pub struct SimplexCost {
 /// \[−1, 1\] (measured for D ≤ 8 by hill climbing, with a 10 % margin;
 /// extrapolated, untested, above 8). Not value-compatible
 /// with [`crate::Simplex`], which is Gustavson-exact in 2D–4D. Dimensions
+/// above 32 reuse gradient bits.
+///
 /// Not tileable (no `with_period`): its skewed lattice does not line up
 /// with axis-aligned periods.
-/// above 32 reuse gradient bits.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct SimplexN {
     seed: u32,
