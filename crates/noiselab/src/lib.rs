@@ -63,6 +63,7 @@ mod noise;
 pub use grid::{Grid, GridError, SimdLevel};
 pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;
+pub use kinds::fast::Fast;
 pub use kinds::improved::{Improved, ImprovedVariant};
 pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
 pub use kinds::simplex::Simplex;

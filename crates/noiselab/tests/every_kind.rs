@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -38,6 +38,8 @@ macro_rules! for_every_kind {
         $check!("value", Value::new(1), 2, (-1.0, 1.0));
         $check!("value", Value::new(0), 3, (-1.0, 1.0));
         $check!("value", Value::new(0), 4, (-1.0, 1.0));
+        $check!("fast", Fast::new(0), 2, (-1.47, 1.47));
+        $check!("fast", Fast::new(3), 3, (-1.47, 1.47));
         $check!("worley", Worley::new(0), 1, (0.0, 1.0));
         $check!("worley", Worley::new(2), 2, (0.0, 2f64.sqrt()));
         $check!("worley", Worley::new(0), 3, (0.0, 3f64.sqrt()));

@@ -1,6 +1,7 @@
 //! The noise kinds, one module each, and the lattice machinery they share.
 
 pub mod classic;
+pub mod fast;
 pub mod improved;
 pub mod modified;
 pub mod simplex;
