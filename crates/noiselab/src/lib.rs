@@ -54,12 +54,14 @@
 
 extern crate alloc;
 
+pub mod compose;
 pub mod grid;
 pub mod hash;
 pub mod kinds;
 pub mod lanes;
 mod noise;
 
+pub use compose::{ComposeError, Looped, Warp};
 pub use grid::{Grid, GridError, SimdLevel};
 pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;
