@@ -134,7 +134,7 @@ impl<N: Noise<D>, W: Noise<D>, const D: usize> Noise<D> for Warp<N, W> {
                 // Where `frequency · p` overflows (|p| near the float limit)
                 // the field is NaN: leave such points unwarped rather than
                 // turn a finite input into NaN. NaN input stays NaN below.
-                let w = L::select((w - w).le(L::cst(0.0)), w, L::cst(0.0));
+                let w = L::select(crate::kinds::is_finite(w), w, L::cst(0.0));
                 *m = *m + L::cst(amplitude) * w;
             }
             q = moved;

@@ -74,6 +74,14 @@ pub(crate) const fn corner_bit(c: usize, d: usize) -> i32 {
     ((c >> d) & 1) as i32
 }
 
+/// Per lane: whether `x` is finite (x − x is 0 for finite x, NaN for ±∞
+/// and NaN).
+#[inline(always)]
+#[allow(clippy::eq_op)]
+pub(crate) fn is_finite<L: Lanes>(x: L) -> L::Mask {
+    (x - x).le(L::cst(0.0))
+}
+
 /// `value` where every coordinate is finite, NaN elsewhere. Simplex kernels
 /// are radial, so an infinite coordinate would otherwise give a quiet 0; the
 /// library's contract is NaN for non-finite input.
