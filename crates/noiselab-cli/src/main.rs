@@ -71,6 +71,15 @@ pub struct NoiseArgs {
     /// Sparse convolution: kernel, cubic (the paper's) or gaussian (its reference).
     #[arg(long)]
     pub kernel: Option<String>,
+    /// Tile: periods in lattice cells, X[,Y[,Z[,W]]] (0 = that axis unbounded). Any positive count.
+    #[arg(long, value_parser = render::parse_tile)]
+    pub tile: Option<render::Tile>,
+    /// Cellular: euclidean (default), squared, manhattan, chebyshev or minkowski:P.
+    #[arg(long)]
+    pub metric: Option<String>,
+    /// Cellular: how far feature points move from cell centres, 0..=1 (default 1).
+    #[arg(long)]
+    pub jitter: Option<f64>,
 }
 
 /// Arithmetic precision of `sample`.
@@ -224,6 +233,9 @@ impl NoiseArgs {
             variant: self.variant.clone(),
             impulses: self.impulses,
             kernel: self.kernel.clone(),
+            tile: self.tile.map(|t| t.0),
+            metric: self.metric.clone(),
+            jitter: self.jitter,
             ..registry::Params::new(dims, self.seed)
         }
     }

@@ -2,7 +2,7 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{Classic, DynNoise, Grid, GridError, Improved, ImprovedVariant, Kernel, Modified, ModifiedHash, ModifiedTexture, Simplex, SimplexN, Sparse, Value};
+use noiselab::{CellOutput, Classic, DynNoise, Fast, Grid, GridError, Improved, ImprovedVariant, Kernel, Metric, Modified, ModifiedHash, ModifiedTexture, Simplex, SimplexN, Sparse, Value, Worley};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -15,12 +15,23 @@ pub struct Params {
     pub impulses: Option<u32>,
     /// Sparse convolution: kernel name.
     pub kernel: Option<String>,
+    /// Tiling periods in cells per axis (0 = unbounded).
+    pub tile: Option<[u32; 4]>,
+    /// Cellular: distance metric name.
+    pub metric: Option<String>,
+    /// Cellular: jitter in [0, 1].
+    pub jitter: Option<f64>,
 }
 
 impl Params {
     /// Dimensions and seed, every option at its default.
     pub fn new(dims: usize, seed: u32) -> Params {
-        Params { dims, seed, variant: None, impulses: None, kernel: None }
+        Params { dims, seed, variant: None, impulses: None, kernel: None, tile: None, metric: None, jitter: None }
+    }
+
+    /// The tiling periods (all zero when not tiled).
+    fn period(&self) -> [u32; 4] {
+        self.tile.unwrap_or([0; 4])
     }
 }
 
@@ -34,8 +45,10 @@ pub struct KindSpec {
     pub variants: &'static [(&'static str, &'static str)],
     /// The documented output range per dimension, used to map values to pixels.
     pub range: fn(usize) -> (f64, f64),
-    /// Kind-specific options it accepts (`impulses`, `kernel`).
+    /// Kind-specific options it accepts (`impulses`, `kernel`, `metric`, `jitter`).
     pub options: &'static [&'static str],
+    /// Whether `--tile` applies.
+    pub tileable: bool,
     build: fn(&Params, &str) -> Result<Field, String>,
 }
 
@@ -99,16 +112,59 @@ macro_rules! field {
     };
 }
 
-fn improved(p: &Params, variant: &str) -> Result<Field, String> {
-    let v = if variant == "2002" { ImprovedVariant::Original2002 } else { ImprovedVariant::Current };
-    Ok(field!(Improved::new(p.seed).with_variant(v), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
+/// A tiling error as the command line words it.
+fn tile_error(e: noiselab::PeriodError) -> String {
+    format!("--tile: {e}")
 }
 
-
-
+fn improved(p: &Params, variant: &str) -> Result<Field, String> {
+    let v = if variant == "2002" { ImprovedVariant::Original2002 } else { ImprovedVariant::Current };
+    let n = Improved::new(p.seed).with_variant(v).with_period(p.period()).map_err(tile_error)?;
+    Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
+}
 
 fn classic(p: &Params, _: &str) -> Result<Field, String> {
-    Ok(field!(Classic::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3]))
+    let n = Classic::new(p.seed).with_period(p.period()).map_err(tile_error)?;
+    Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3]))
+}
+
+fn fast(p: &Params, _: &str) -> Result<Field, String> {
+    Ok(field!(Fast::new(p.seed), p.dims, [2 => D2, 3 => D3]))
+}
+
+/// Metrics `--metric` accepts for cellular noise.
+pub const METRICS: &str = "euclidean, squared, manhattan, chebyshev, minkowski:P";
+
+fn worley(p: &Params, variant: &str) -> Result<Field, String> {
+    let metric = match p.metric.as_deref().unwrap_or("euclidean") {
+        "euclidean" => Metric::Euclidean,
+        "squared" => Metric::EuclideanSquared,
+        "manhattan" => Metric::Manhattan,
+        "chebyshev" => Metric::Chebyshev,
+        other => match other.strip_prefix("minkowski:").map(str::parse::<f64>) {
+            Some(Ok(e)) => Metric::Minkowski(e),
+            _ => return Err(format!("--metric must be one of {METRICS}, got {other}")),
+        },
+    };
+    let output = match variant {
+        "f2" => CellOutput::F2,
+        "f3" => CellOutput::F3,
+        "f4" => CellOutput::F4,
+        "f2-f1" => CellOutput::F2MinusF1,
+        "mean12" => CellOutput::Mean12,
+        "product12" => CellOutput::Product12,
+        "cells" => CellOutput::CellValue,
+        _ => CellOutput::F1,
+    };
+    let n = Worley::new(p.seed)
+        .with_jitter(p.jitter.unwrap_or(1.0))
+        .map_err(|e| format!("--jitter: {e}"))?
+        .with_metric(metric)
+        .map_err(|e| format!("--metric: {e}"))?
+        .with_output(output)
+        .with_period(p.period())
+        .map_err(tile_error)?;
+    Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
 }
 
 fn simplex(p: &Params, _: &str) -> Result<Field, String> {
@@ -116,7 +172,8 @@ fn simplex(p: &Params, _: &str) -> Result<Field, String> {
 }
 
 fn modified(p: &Params, variant: &str) -> Result<Field, String> {
-    let computed = |hash| Modified::new(p.seed).with_hash(hash);
+    let tiled = Modified::new(p.seed).with_period(p.period()).map_err(tile_error)?;
+    let computed = |hash| tiled.with_hash(hash);
     Ok(match variant {
         "wide" => field!(computed(ModifiedHash::Wide), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]),
         "textured" => {
@@ -139,7 +196,7 @@ pub fn sparse_noise(p: &Params) -> Result<Sparse, String> {
     };
     let n = p.impulses.unwrap_or(20);
     let noise = Sparse::new(p.seed).with_impulses(n).map_err(|_| format!("--impulses must be 1..={}, got {n}", Sparse::MAX_IMPULSES))?;
-    Ok(noise.with_kernel(kernel))
+    Ok(noise.with_kernel(kernel).with_period(p.period()).map_err(tile_error)?)
 }
 
 fn sparse(p: &Params, _: &str) -> Result<Field, String> {
@@ -153,7 +210,8 @@ fn simplex_n(p: &Params, _: &str) -> Result<Field, String> {
 }
 
 fn value(p: &Params, _: &str) -> Result<Field, String> {
-    Ok(field!(Value::new(p.seed), p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
+    let n = Value::new(p.seed).with_period(p.period()).map_err(tile_error)?;
+    Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
 }
 
 
@@ -164,6 +222,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Perlin 1985 gradient noise (cubic s-curve, 256-entry permutation), reference-exact",
         dims: 1..=3,
         default_dims: 3,
+        tileable: true,
         options: &[],
         variants: &[],
         range: |d| {
@@ -177,6 +236,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Perlin 2002 improved noise (quintic fade, edge gradients), reference-exact",
         dims: 1..=4,
         default_dims: 3,
+        tileable: true,
         options: &[],
         variants: &[
             ("current", "the reference gradient as it stands today"),
@@ -195,6 +255,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "simplex noise, Gustavson's 2012 reference (2D-4D) and simplexnoise1234 (1D), reference-exact",
         dims: 1..=4,
         default_dims: 3,
+        tileable: false,
         options: &[],
         variants: &[],
         range: |_| (-1.0, 1.0),
@@ -205,6 +266,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "N-dimensional simplex noise (any dimension, cost O(n^2))",
         dims: 1..=8,
         default_dims: 5,
+        tileable: false,
         options: &[],
         variants: &[],
         range: |_| (-1.0, 1.0),
@@ -215,6 +277,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "lattice value noise with quintic interpolation",
         dims: 1..=4,
         default_dims: 3,
+        tileable: true,
         options: &[],
         variants: &[],
         range: |_| (-1.0, 1.0),
@@ -225,6 +288,7 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Olano 2005 modified noise: table-free hash, exact zero slices",
         dims: 1..=4,
         default_dims: 3,
+        tileable: true,
         options: &[],
         variants: &[
             ("mod61", "squaring modulo 61, period 61 cells (Olano)"),
@@ -243,10 +307,42 @@ pub static KINDS: &[KindSpec] = &[
         summary: "Sparse convolution noise (Frisvad & Wyvill 2007): random impulses, cubic kernel, no lattice artefacts; --impulses N (20), --kernel cubic|gaussian",
         dims: 1..=4,
         default_dims: 3,
+        tileable: true,
         options: &["impulses", "kernel"],
         variants: &[],
         range: |_| (-1.0, 1.0),
         build: sparse,
+    },
+    KindSpec {
+        name: "worley",
+        summary: "Cellular noise (Worley 1996): distances to the nearest jittered feature points; --metric, --jitter",
+        dims: 1..=4,
+        default_dims: 2,
+        tileable: true,
+        options: &["metric", "jitter"],
+        variants: &[
+            ("f1", "distance to the nearest feature point"),
+            ("f2", "second nearest"),
+            ("f3", "third nearest"),
+            ("f4", "fourth nearest"),
+            ("f2-f1", "F2 − F1: cell borders"),
+            ("mean12", "(F1 + F2) / 2"),
+            ("product12", "F1 · F2"),
+            ("cells", "a value per cell in [−1, 1): flat Voronoi cells"),
+        ],
+        range: |d| (0.0, (d as f64).sqrt()),
+        build: worley,
+    },
+    KindSpec {
+        name: "fast",
+        summary: "Fast approximate noise: a 32³ two-channel volume of 8-periodic improved noise, trilinear, rotated by a low-frequency sample",
+        dims: 2..=3,
+        default_dims: 3,
+        tileable: false,
+        options: &[],
+        variants: &[],
+        range: |_| (-1.0, 1.0),
+        build: fast,
     },
 ];
 
@@ -282,10 +378,23 @@ impl KindSpec {
                 }
             },
         };
-        for (given, option) in [(params.impulses.is_some(), "impulses"), (params.kernel.is_some(), "kernel")] {
+        let options = [
+            (params.impulses.is_some(), "impulses"),
+            (params.kernel.is_some(), "kernel"),
+            (params.metric.is_some(), "metric"),
+            (params.jitter.is_some(), "jitter"),
+        ];
+        for (given, option) in options {
             if given && !self.options.contains(&option) {
                 return Err(format!("--{option} does not apply to {}", self.name));
             }
+        }
+        if params.tile.is_some() && !self.tileable {
+            return Err(format!(
+                "--tile: {} is not tileable (its lattice is skewed or baked); tileable kinds: {}",
+                self.name,
+                KINDS.iter().filter(|k| k.tileable).map(|k| k.name).collect::<Vec<_>>().join(", ")
+            ));
         }
         (self.build)(params, variant)
     }

@@ -154,6 +154,26 @@ pub fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     }
 }
 
+/// Tiling periods in cells (a newtype: clap treats a bare array as values).
+#[derive(Clone, Copy, Debug)]
+pub struct Tile(pub [u32; 4]);
+
+/// `X[,Y[,Z[,W]]]`: whole numbers of cells, at least one positive.
+pub fn parse_tile(s: &str) -> Result<Tile, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() > 4 {
+        return Err(format!("at most 4 periods, got '{s}'"));
+    }
+    let mut cells = [0u32; 4];
+    for (c, part) in cells.iter_mut().zip(&parts) {
+        *c = part.trim().parse().map_err(|_| format!("'{}' is not a whole number of cells", part.trim()))?;
+    }
+    if cells.iter().all(|&c| c == 0) {
+        return Err(format!("at least one period must be positive, got '{s}'"));
+    }
+    Ok(Tile(cells))
+}
+
 /// A positive whole number.
 pub fn parse_count(s: &str) -> Result<usize, String> {
     match s.trim().parse::<usize>() {

@@ -27,15 +27,17 @@ struct Row {
 }
 
 /// The rows: every 3D-capable kind and variant on a lattice plane (z = 0)
-/// and between planes (z = 0.5). The textured modified noise equals the
-/// computed one bit for bit, so it is not repeated.
+/// and between planes (z = 0.5).
 fn rows() -> Vec<Row> {
     let mut rows = Vec::new();
     for spec in registry::KINDS.iter().filter(|k| k.dims.contains(&3)) {
         let variants: Vec<Option<&'static str>> = if spec.variants.is_empty() {
             vec![None]
         } else {
-            spec.variants.iter().map(|(v, _)| Some(*v)).filter(|v| *v != Some("textured")).collect()
+            // Textured modified noise equals the computed one; of cellular
+            // noise's outputs, F1 and the F2 − F1 borders are the ones people use.
+            let shown = |v: &str| v != "textured" && (spec.name != "worley" || v == "f1" || v == "f2-f1");
+            spec.variants.iter().map(|(v, _)| *v).filter(|v| shown(v)).map(Some).collect()
         };
         for (i, variant) in variants.into_iter().enumerate() {
             for z in [0.0, 0.5] {
@@ -218,8 +220,12 @@ fn flags(r: &Report, seeds: usize) -> Vec<&'static str> {
         f.push("axis-aligned");
     }
     if let Some(l) = &r.lattice {
-        if l.c2_jump_score.is_some_and(|c| c > 1.0) {
-            f.push("C2 jump");
+        // A jump only counts where it stands out from the same statistic
+        // at cell centres (cellular noise is C0 everywhere, not at faces).
+        if let (Some(jump), Some(centres)) = (l.c2_jump_score, l.c2_reference_score) {
+            if jump > 1.0 && jump > 2.0 * centres {
+                f.push("C2 jump");
+            }
         }
         if l.node_value_score.is_some_and(|n| n < 0.01) {
             f.push("zero at nodes");
@@ -301,7 +307,7 @@ fn page(rows: &[Measured], size: usize, seeds: usize) -> String {
         "\nFlags (thresholds from the quality note, in units of each metric's null sd where it has one): \
          *lattice lines* — cyclostationarity max/null > 2; *anisotropic* — anisotropy more than 3 null sd above \
          isotropic; *axes depleted* / *axis-aligned* — axis-line ratio more than 3 null sd below / above 1; \
-         *C2 jump* — second-derivative jump score > 1; *zero at nodes* — node value score < 0.01; \
+         *C2 jump* — second-derivative jump score > 1 and above twice its value at cell centres; *zero at nodes* — node value score < 0.01; \
          *cell-dependent variance* — folded-variance CV > 2× its iid null."
     );
     let _ = writeln!(s, "\nThe reference's lattice columns use an arbitrary 16 px grid: it has none, so they show the null.\n");

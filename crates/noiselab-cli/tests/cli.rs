@@ -297,3 +297,52 @@ fn sparse_options_are_validated() {
     assert_one_line_error(&run(&["render", "sparse", "--method", "scatter"]), "--method");
     assert!(!out.exists());
 }
+
+#[test]
+fn tiled_renders_of_every_tileable_kind_have_no_seam() {
+    // Two tiles side by side in each direction: the analysis periodicity at
+    // the tile size is exactly 0 (no seam anywhere), and 1 px off it is not.
+    let dir = tempfile::tempdir().unwrap();
+    for kind in ["classic", "improved", "value", "modified", "sparse", "worley"] {
+        let path = dir.path().join(format!("{kind}.npy"));
+        let out = noiselab()
+            .args(["render", kind, "--dims", "2", "--tile", "4,3", "--scale", "16", "--size", "128x96", "-o"])
+            .arg(&path)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{kind}: {}", stderr_of(&out));
+        let values = npy_values(&path);
+        for j in 0..96 {
+            for i in 0..128 {
+                assert_eq!(values[j * 128 + i].to_bits(), values[(j % 48) * 128 + i % 64].to_bits(), "{kind} ({i}, {j})");
+            }
+        }
+        let out = noiselab().arg("analyze").arg(&path).args(["--period", "64", "--json"]).output().unwrap();
+        assert!(out.status.success(), "{kind}: {}", stderr_of(&out));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(json["periodicity"]["x"]["max_abs_diff"], 0.0, "{kind}");
+    }
+    assert_one_line_error(&noiselab().args(["render", "simplex", "--tile", "4", "-o"]).arg(dir.path().join("s.png")).output().unwrap(), "not tileable");
+    assert_one_line_error(&noiselab().args(["render", "value", "--tile", "4,x", "-o"]).arg(dir.path().join("s.png")).output().unwrap(), "--tile");
+}
+
+#[test]
+fn cellular_and_fast_kinds_render() {
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        &["worley", "--variant", "f2-f1"][..],
+        &["worley", "--variant", "cells", "--metric", "manhattan", "--jitter", "0.5"],
+        &["worley", "--metric", "minkowski:3", "--dims", "3"],
+        &["fast"],
+    ] {
+        let path = dir.path().join("out.npy");
+        let out = noiselab().arg("render").args(args).args(["--size", "64x64", "--force", "-o"]).arg(&path).output().unwrap();
+        assert!(out.status.success(), "{args:?}: {}", stderr_of(&out));
+        let values = npy_values(&path);
+        assert!(values.iter().all(|v| v.is_finite()) && values.iter().any(|&v| v != values[0]), "{args:?}");
+    }
+    let bad = dir.path().join("bad.png");
+    assert_one_line_error(&noiselab().args(["render", "worley", "--jitter", "1.5", "-o"]).arg(&bad).output().unwrap(), "--jitter");
+    assert_one_line_error(&noiselab().args(["render", "worley", "--metric", "taxicab", "-o"]).arg(&bad).output().unwrap(), "--metric");
+    assert_one_line_error(&noiselab().args(["render", "value", "--jitter", "0.5", "-o"]).arg(&bad).output().unwrap(), "--jitter");
+}
