@@ -196,7 +196,7 @@ pub fn sparse_noise(p: &Params) -> Result<Sparse, String> {
     };
     let n = p.impulses.unwrap_or(20);
     let noise = Sparse::new(p.seed).with_impulses(n).map_err(|_| format!("--impulses must be 1..={}, got {n}", Sparse::MAX_IMPULSES))?;
-    Ok(noise.with_kernel(kernel).with_period(p.period()).map_err(tile_error)?)
+    noise.with_kernel(kernel).with_period(p.period()).map_err(tile_error)
 }
 
 fn sparse(p: &Params, _: &str) -> Result<Field, String> {
