@@ -61,7 +61,7 @@ pub mod kinds;
 pub mod lanes;
 mod noise;
 
-pub use compose::{ComposeError, Looped, Warp};
+pub use compose::{ComposeError, Fractal, FractalMode, Looped, Octave, Warp};
 pub use grid::{Grid, GridError, SimdLevel};
 pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;

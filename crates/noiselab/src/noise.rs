@@ -93,6 +93,18 @@ pub trait DynNoise<const D: usize>: Send + Sync {
     fn fill_grid(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError>;
     /// [`Noise::fill_points`].
     fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]);
+    /// Eight lanes at once ([`Noise::sample`] on [`F32x8`]).
+    fn sample_x8(&self, p: [F32x8; D]) -> F32x8;
+}
+
+/// A noise chosen at run time is a [`Noise`] again (one virtual call per
+/// point, or per eight points in batches), so fractals, warps and loops
+/// compose over it.
+impl<const D: usize> Noise<D> for alloc::boxed::Box<dyn DynNoise<D>> {
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, p: [L; D]) -> L {
+        L::sample_dyn(&**self, p)
+    }
 }
 
 impl<N: Noise<D>, const D: usize> DynNoise<D> for N {
@@ -107,6 +119,9 @@ impl<N: Noise<D>, const D: usize> DynNoise<D> for N {
     }
     fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]) {
         Noise::fill_points(self, points, out)
+    }
+    fn sample_x8(&self, p: [F32x8; D]) -> F32x8 {
+        Noise::sample(self, p)
     }
 }
 

@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp};
+use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -41,6 +41,9 @@ macro_rules! for_every_kind {
         $check!("looped-improved", Looped::new(Improved::new(2), 2.5).unwrap(), 3, (-1.04, 1.04));
         $check!("warped-value", Warp::new(Value::new(1), Improved::new, 7, 0.8, 0.5).unwrap(), 2, (-1.0, 1.0));
         $check!("warped-improved-x3", Warp::new(Improved::new(1), Value::new, 7, 0.8, 0.5).unwrap().iterated(3, 0.5, 2.0).unwrap(), 3, (-1.04, 1.04));
+        $check!("fbm-improved", Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(), 3, (-1.04, 1.04));
+        $check!("ridged-simplex", Fractal::new(|o| Simplex::new(o.seed), 1, 4, FractalMode::Ridged).unwrap(), 2, (0.0, 1.0));
+        $check!("hybrid-value", Fractal::new(|o| Value::new(o.seed), 1, 4, FractalMode::Hybrid).unwrap(), 4, (-1.5, 1.5));
         $check!("fast", Fast::new(0), 2, (-1.47, 1.47));
         $check!("fast", Fast::new(3), 3, (-1.47, 1.47));
         $check!("worley", Worley::new(0), 1, (0.0, 1.0));

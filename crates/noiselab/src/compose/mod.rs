@@ -1,9 +1,14 @@
-//! Noises built from other noises: seamless time loops and domain warps.
+//! Noises built from other noises: fractal sums, seamless time loops and
+//! domain warps.
 //! Each wraps any [`Noise`] and is itself a `Noise`, so they nest and
 //! batch like the kinds they wrap.
 
 use crate::lanes::Lanes;
 use crate::noise::Noise;
+
+mod fractal;
+
+pub use fractal::{Fractal, FractalMode, Octave, MAX_OCTAVES};
 
 /// Perlin's looping animation ("Making Noise"): with time as the last axis
 /// and a loop length `T`,
@@ -29,6 +34,15 @@ pub enum ComposeError {
     Warp(f64),
     /// At most 16 warp iterations.
     Iterations(u32),
+    /// Octaves must be 1..=30.
+    Octaves(u32),
+    /// Lacunarity must be finite and above 1.
+    Lacunarity(f64),
+    /// Gain must be finite and positive.
+    Gain(f64),
+    /// A tiled octave's period (base period × lacunarityⁱ) must be a whole
+    /// number of cells.
+    OctavePeriod(f64),
 }
 
 impl core::fmt::Display for ComposeError {
@@ -37,6 +51,10 @@ impl core::fmt::Display for ComposeError {
             ComposeError::LoopLength(t) => write!(f, "loop length must be finite and positive, got {t}"),
             ComposeError::Warp(v) => write!(f, "warp amplitude and frequency must be finite (frequency positive), got {v}"),
             ComposeError::Iterations(n) => write!(f, "warp iterations must be 1..=16, got {n}"),
+            ComposeError::Octaves(n) => write!(f, "octaves must be 1..=30, got {n}"),
+            ComposeError::Lacunarity(l) => write!(f, "lacunarity must be finite and above 1, got {l}"),
+            ComposeError::Gain(g) => write!(f, "gain must be finite and positive, got {g}"),
+            ComposeError::OctavePeriod(p) => write!(f, "a tiled octave needs a whole number of cells per period, got {p} (use an integer lacunarity)"),
         }
     }
 }

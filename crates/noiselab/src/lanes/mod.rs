@@ -103,6 +103,10 @@ pub trait Lanes:
     /// Whether any lane of `m` is set (for loops that run until every lane
     /// is done; the result per lane must not depend on extra iterations).
     fn any(m: Self::Mask) -> bool;
+    /// Evaluates a run-time-chosen noise on these lanes (the bridge that
+    /// makes `Box<dyn DynNoise<D>>` a `Noise<D>`).
+    #[doc(hidden)]
+    fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self;
     /// Per lane: `self` raised to `e`, by libm's software `pow`/`powf`
     /// (the same function in every lane type, so lanes still agree).
     fn powf(self, e: Self) -> Self;

@@ -109,7 +109,7 @@ impl IntLanes for i32 {
 }
 
 macro_rules! scalar_lanes {
-    ($t:ty, $floor:path, $sqrt:path, $pow:path) => {
+    ($t:ty, $floor:path, $sqrt:path, $pow:path, $dyn:ident) => {
         impl Lanes for $t {
             type Elem = $t;
             type Int = i32;
@@ -173,6 +173,10 @@ macro_rules! scalar_lanes {
                 $pow(self, e)
             }
             #[inline(always)]
+            fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self {
+                $dyn(noise, p)
+            }
+            #[inline(always)]
             fn select(m: bool, a: Self, b: Self) -> Self {
                 if m {
                     a
@@ -197,5 +201,17 @@ macro_rules! scalar_lanes {
     };
 }
 
-scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf);
-scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow);
+scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf, get_f32);
+scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow, get);
+
+/// `DynNoise::get`, by name for the macro.
+#[inline(always)]
+fn get<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [f64; D]) -> f64 {
+    noise.get(p)
+}
+
+/// `DynNoise::get_f32`, by name for the macro.
+#[inline(always)]
+fn get_f32<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [f32; D]) -> f32 {
+    noise.get_f32(p)
+}

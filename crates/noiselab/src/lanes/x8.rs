@@ -143,6 +143,10 @@ impl Lanes for F32x8 {
         F32x8(map!(|i| libm::powf(self.0[i], e.0[i])))
     }
     #[inline(always)]
+    fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self {
+        noise.sample_x8(p)
+    }
+    #[inline(always)]
     fn select(m: M32x8, a: Self, b: Self) -> Self {
         // Bitwise blend: the form LLVM maps to one blend instruction.
         F32x8(map!(|i| f32::from_bits(

@@ -1,0 +1,317 @@
+//! Fractal sums of any noise (Perlin 1985's 1/f noise and turbulence, and
+//! Musgrave's ridged and hybrid multifractals): one octave loop for all
+//! modes, written once over values and once-and-the-same over value +
+//! gradient pairs, so derivatives come from the same code.
+
+use alloc::vec::Vec;
+
+use super::ComposeError;
+use crate::lanes::Lanes;
+use crate::noise::{Noise, NoiseGradient};
+
+/// How octaves combine. `nᵢ` is octave i's noise at `lacunarityⁱ·p`, `aᵢ =
+/// gainⁱ` its amplitude and `A = Σ aᵢ`; every sum is divided by `A`, so the
+/// documented range follows from the base noise's range R.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FractalMode {
+    /// Σ aᵢ nᵢ / A (Perlin's "1/f noise"). Range ±R.
+    #[default]
+    Fbm,
+    /// Σ aᵢ |nᵢ| / A (Perlin's turbulence). Range [0, R].
+    Turbulence,
+    /// Σ aᵢ (1 − |nᵢ|)²·wᵢ / A with wᵢ = clamp(2·previous term, 0, 1), w₀ = 1
+    /// (Musgrave's ridged multifractal). Range [0, 1] for R ≤ 2.
+    Ridged,
+    /// Σ aᵢ (2|nᵢ| − 1) / A. Range [−1, 2R − 1].
+    Billow,
+    /// Musgrave's hybrid multifractal with offset ½: s₀ = n₀ + ½,
+    /// sᵢ = (nᵢ + ½)·aᵢ weighted by the running product of earlier
+    /// signals (capped at 1), over A. Range ±(R + ½).
+    Hybrid,
+}
+
+impl FractalMode {
+    /// Every mode, in the order the command line lists them.
+    pub const ALL: [FractalMode; 5] =
+        [FractalMode::Fbm, FractalMode::Turbulence, FractalMode::Ridged, FractalMode::Billow, FractalMode::Hybrid];
+
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            FractalMode::Fbm => "fbm",
+            FractalMode::Turbulence => "turbulence",
+            FractalMode::Ridged => "ridged",
+            FractalMode::Billow => "billow",
+            FractalMode::Hybrid => "hybrid",
+        }
+    }
+
+    /// The range of the sum for a base noise of range ±`r`.
+    pub fn range(self, r: f64) -> (f64, f64) {
+        match self {
+            FractalMode::Fbm => (-r, r),
+            FractalMode::Turbulence => (0.0, r),
+            FractalMode::Ridged => (0.0, 1.0),
+            FractalMode::Billow => (-1.0, 2.0 * r - 1.0),
+            FractalMode::Hybrid => (-(r + HYBRID_OFFSET), r + HYBRID_OFFSET),
+        }
+    }
+}
+
+/// Musgrave's hybrid offset.
+const HYBRID_OFFSET: f64 = 0.5;
+
+/// Most octaves a fractal may have.
+pub const MAX_OCTAVES: u32 = 30;
+
+/// What the octave loop needs of a number: lanes for values, and value +
+/// gradient pairs for derivatives.
+trait Arith: Copy {
+    fn cst(c: f64) -> Self;
+    fn add(self, o: Self) -> Self;
+    fn mul(self, o: Self) -> Self;
+    fn scale(self, c: f64) -> Self;
+    fn abs(self) -> Self;
+    /// min(self, 1).
+    fn min_one(self) -> Self;
+    /// clamp(self, 0, 1).
+    fn clamp01(self) -> Self;
+}
+
+impl<L: Lanes> Arith for L {
+    #[inline(always)]
+    fn cst(c: f64) -> Self {
+        L::cst(c)
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self + o
+    }
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        self * o
+    }
+    #[inline(always)]
+    fn scale(self, c: f64) -> Self {
+        self * L::cst(c)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Lanes::abs(self)
+    }
+    #[inline(always)]
+    fn min_one(self) -> Self {
+        Lanes::min(self, L::cst(1.0))
+    }
+    #[inline(always)]
+    fn clamp01(self) -> Self {
+        Lanes::max(Lanes::min(self, L::cst(1.0)), L::cst(0.0))
+    }
+}
+
+/// A value and its gradient (forward-mode differentiation).
+#[derive(Clone, Copy)]
+struct Dual<L: Lanes, const D: usize> {
+    v: L,
+    d: [L; D],
+}
+
+impl<L: Lanes, const D: usize> Arith for Dual<L, D> {
+    #[inline(always)]
+    fn cst(c: f64) -> Self {
+        Dual { v: L::cst(c), d: [L::cst(0.0); D] }
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Dual { v: self.v + o.v, d: core::array::from_fn(|k| self.d[k] + o.d[k]) }
+    }
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        Dual { v: self.v * o.v, d: core::array::from_fn(|k| self.d[k] * o.v + self.v * o.d[k]) }
+    }
+    #[inline(always)]
+    fn scale(self, c: f64) -> Self {
+        Dual { v: self.v * L::cst(c), d: self.d.map(|g| g * L::cst(c)) }
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        let negative = self.v.lt(L::cst(0.0));
+        Dual { v: Lanes::abs(self.v), d: self.d.map(|g| L::select(negative, -g, g)) }
+    }
+    #[inline(always)]
+    fn min_one(self) -> Self {
+        let capped = L::cst(1.0).lt(self.v);
+        Dual { v: L::select(capped, L::cst(1.0), self.v), d: self.d.map(|g| L::select(capped, L::cst(0.0), g)) }
+    }
+    #[inline(always)]
+    fn clamp01(self) -> Self {
+        let out = self.v.lt(L::cst(0.0)) | L::cst(1.0).lt(self.v);
+        Dual { v: Lanes::max(Lanes::min(self.v, L::cst(1.0)), L::cst(0.0)), d: self.d.map(|g| L::select(out, L::cst(0.0), g)) }
+    }
+}
+
+/// A fractal sum of `octaves` copies of a noise, each on its own seed.
+#[derive(Clone, Debug)]
+pub struct Fractal<N> {
+    octaves: Vec<N>,
+    mode: FractalMode,
+    lacunarity: f64,
+    gain: f64,
+}
+
+/// What a fractal's constructor tells the function that makes octave i.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Octave {
+    /// Octave index, 0 = the base.
+    pub index: u32,
+    /// The octave's seed: the fractal's seed + index, so octaves do not
+    /// correlate.
+    pub seed: u32,
+    /// lacunarityⁱ: octave i is read at this multiple of p.
+    pub frequency: f64,
+}
+
+impl Octave {
+    /// A base period (in cells) scaled to this octave: tiling composes when
+    /// octave i is tiled with `period · lacunarityⁱ` cells, which must be a
+    /// whole number (integer lacunarity).
+    pub fn period(&self, base: [u32; 4]) -> Result<[u32; 4], ComposeError> {
+        let mut out = [0u32; 4];
+        for (o, &b) in out.iter_mut().zip(&base) {
+            let p = b as f64 * self.frequency;
+            if p != libm::floor(p) || p > (1u64 << 30) as f64 {
+                return Err(ComposeError::OctavePeriod(p));
+            }
+            *o = p as u32;
+        }
+        Ok(out)
+    }
+}
+
+impl<N> Fractal<N> {
+    /// `octaves` octaves made by `make` (seeds `seed + i`), lacunarity 2,
+    /// gain ½.
+    pub fn new(make: impl Fn(Octave) -> N, seed: u32, octaves: u32, mode: FractalMode) -> Result<Fractal<N>, ComposeError> {
+        Fractal::with(make, seed, octaves, mode, 2.0, 0.5)
+    }
+
+    /// With explicit lacunarity (frequency ratio, > 1) and gain (amplitude
+    /// ratio, > 0).
+    pub fn with(
+        make: impl Fn(Octave) -> N,
+        seed: u32,
+        octaves: u32,
+        mode: FractalMode,
+        lacunarity: f64,
+        gain: f64,
+    ) -> Result<Fractal<N>, ComposeError> {
+        if !(1..=MAX_OCTAVES).contains(&octaves) {
+            return Err(ComposeError::Octaves(octaves));
+        }
+        if !(lacunarity.is_finite() && lacunarity > 1.0) {
+            return Err(ComposeError::Lacunarity(lacunarity));
+        }
+        if !(gain.is_finite() && gain > 0.0) {
+            return Err(ComposeError::Gain(gain));
+        }
+        let octaves = (0..octaves)
+            .map(|i| make(Octave { index: i, seed: seed.wrapping_add(i), frequency: libm::pow(lacunarity, i as f64) }))
+            .collect();
+        Ok(Fractal { octaves, mode, lacunarity, gain })
+    }
+
+    /// Perlin's rule from the talk: stop before an octave would vary faster
+    /// than about once every two pixels. With `footprint` input units per
+    /// pixel (a base of about one feature per unit), that is
+    /// `⌊log_lacunarity(1 / (2·footprint))⌋ + 1` octaves, within 1..=30.
+    pub fn octaves_for_footprint(footprint: f64, lacunarity: f64) -> u32 {
+        if !(footprint.is_finite() && footprint > 0.0 && lacunarity.is_finite() && lacunarity > 1.0) {
+            return 1;
+        }
+        let n = libm::floor(libm::log(1.0 / (2.0 * footprint)) / libm::log(lacunarity)) + 1.0;
+        n.clamp(1.0, MAX_OCTAVES as f64) as u32
+    }
+
+    /// Number of octaves.
+    pub fn octaves(&self) -> usize {
+        self.octaves.len()
+    }
+
+    /// The mode.
+    pub fn mode(&self) -> FractalMode {
+        self.mode
+    }
+
+    /// The octave loop, over any [`Arith`]: `octave(i, frequency)` gives
+    /// octave i's noise (value or value + gradient).
+    #[inline(always)]
+    fn combine<T: Arith>(&self, mut octave: impl FnMut(usize, f64) -> T) -> T {
+        let (mut amplitude, mut frequency, mut total) = (1.0, 1.0, 0.0);
+        let mut sum = T::cst(0.0);
+        let mut weight = T::cst(1.0);
+        for i in 0..self.octaves.len() {
+            let n = octave(i, frequency);
+            let term = match self.mode {
+                FractalMode::Fbm => n,
+                FractalMode::Turbulence => n.abs(),
+                FractalMode::Billow => n.abs().scale(2.0).add(T::cst(-1.0)),
+                FractalMode::Ridged => {
+                    let s = T::cst(1.0).add(n.abs().scale(-1.0));
+                    let s = s.mul(s).mul(weight);
+                    weight = s.scale(2.0).clamp01();
+                    s
+                }
+                FractalMode::Hybrid => {
+                    let signal = n.add(T::cst(HYBRID_OFFSET));
+                    if i == 0 {
+                        weight = signal;
+                        signal
+                    } else {
+                        let w = weight.min_one();
+                        let s = signal.scale(amplitude);
+                        weight = w.mul(s);
+                        // Hybrid applies its own amplitude inside the weight.
+                        sum = sum.add(w.mul(s));
+                        total += amplitude;
+                        amplitude *= self.gain;
+                        frequency *= self.lacunarity;
+                        continue;
+                    }
+                }
+            };
+            sum = sum.add(term.scale(amplitude));
+            total += amplitude;
+            amplitude *= self.gain;
+            frequency *= self.lacunarity;
+        }
+        sum.scale(1.0 / total)
+    }
+}
+
+/// An octave whose scaled point overflows (|p| near the float limit) is
+/// NaN; it contributes 0 instead, so finite input stays finite. NaN input
+/// gives NaN (checked on the result).
+#[inline(always)]
+fn finite_or_zero<L: Lanes>(v: L) -> L {
+    L::select(crate::kinds::is_finite(v), v, L::cst(0.0))
+}
+
+impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, p: [L; D]) -> L {
+        let v = self.combine(|i, f| finite_or_zero(self.octaves[i].sample(p.map(|c| c * L::cst(f)))));
+        crate::kinds::finite_or_nan(p, v)
+    }
+}
+
+/// Analytic derivatives through every mode, where the base has them.
+impl<N: NoiseGradient<D>, const D: usize> NoiseGradient<D> for Fractal<N> {
+    #[inline(always)]
+    fn sample_gradient<L: Lanes>(&self, p: [L; D]) -> (L, [L; D]) {
+        let d = self.combine(|i, f| {
+            let (v, g) = self.octaves[i].sample_gradient(p.map(|c| c * L::cst(f)));
+            Dual { v: finite_or_zero(v), d: g.map(|c| finite_or_zero(c * L::cst(f))) }
+        });
+        (crate::kinds::finite_or_nan(p, d.v), d.d.map(|g| crate::kinds::finite_or_nan(p, g)))
+    }
+}

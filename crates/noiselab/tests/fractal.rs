@@ -1,0 +1,133 @@
+//! Fractal sums over every base kind: documented ranges, tiling that
+//! composes across octaves, analytic derivatives, the footprint rule, and
+//! run-time composition through `Box<dyn DynNoise>`.
+
+use noiselab::hash::SplitMix64;
+use noiselab::{
+    Classic, Fractal, FractalMode, Improved, Modified, Noise, NoiseGradient, Simplex, Sparse, Value, Worley,
+};
+
+fn random_points<const D: usize>(count: usize, seed: u64) -> Vec<[f64; D]> {
+    let mut rng = SplitMix64(seed);
+    (0..count).map(|_| core::array::from_fn(|_| (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0)).collect()
+}
+
+/// Every mode stays inside `mode.range(r)` for a base of range ±r (and,
+/// for bases that use both signs, spans a good part of it).
+fn check_ranges<N: Noise<D>, const D: usize>(name: &str, make: impl Fn(u32) -> N, r: f64) {
+    let symmetric = name != "worley";
+    for mode in FractalMode::ALL {
+        let f = Fractal::new(|o| make(o.seed), 9, 6, mode).unwrap();
+        let (lo, hi) = mode.range(r);
+        let (mut min, mut max) = (f64::MAX, f64::MIN);
+        for p in random_points::<D>(20_000, 3) {
+            let v = f.get(p);
+            min = min.min(v);
+            max = max.max(v);
+        }
+        assert!(min >= lo && max <= hi, "{name} {mode:?} {D}D: [{min}, {max}] outside [{lo}, {hi}]");
+        assert!(!symmetric || max - min > 0.25 * (hi - lo), "{name} {mode:?}: [{min}, {max}] spans too little of [{lo}, {hi}]");
+    }
+}
+
+#[test]
+fn every_mode_stays_in_its_documented_range_over_every_kind() {
+    check_ranges::<_, 3>("improved", Improved::new, 1.04);
+    check_ranges::<_, 2>("classic", Classic::new, 0.71);
+    check_ranges::<_, 2>("simplex", Simplex::new, 1.0);
+    check_ranges::<_, 3>("value", Value::new, 1.0);
+    check_ranges::<_, 3>("modified", Modified::new, 1.0);
+    check_ranges::<_, 2>("worley", Worley::new, 2f64.sqrt());
+    check_ranges::<_, 2>("sparse", |s| Sparse::new(s).with_impulses(8).unwrap(), 2.0);
+}
+
+#[test]
+fn tiling_composes_across_octaves() {
+    // Octave i of a tile of P cells is tiled with P·2ⁱ cells.
+    let period = [3, 5, 0, 0];
+    let check = |name: &str, f: &dyn Fn([f64; 2]) -> f64| {
+        let mut rng = SplitMix64(12);
+        for _ in 0..2000 {
+            let p: [f64; 2] = core::array::from_fn(|_| ((rng.next() >> 40) % 4096) as f64 / 64.0 - 32.0);
+            assert_eq!(f(p).to_bits(), f([p[0] + 3.0, p[1]]).to_bits(), "{name} x at {p:?}");
+            assert_eq!(f(p).to_bits(), f([p[0], p[1] + 5.0]).to_bits(), "{name} y at {p:?}");
+        }
+    };
+    for mode in FractalMode::ALL {
+        let improved = Fractal::new(|o| Improved::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 5, mode).unwrap();
+        check("improved", &|p| improved.get(p));
+        let value = Fractal::new(|o| Value::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 5, mode).unwrap();
+        check("value", &|p| value.get(p));
+        let worley = Fractal::new(|o| Worley::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
+        check("worley", &|p| worley.get(p));
+        let classic = Fractal::new(|o| Classic::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
+        check("classic", &|p| classic.get(p));
+        let modified = Fractal::new(|o| Modified::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
+        check("modified", &|p| modified.get(p));
+        let sparse = Fractal::new(|o| Sparse::new(o.seed).with_impulses(4).unwrap().with_period(o.period(period).unwrap()).unwrap(), 1, 3, mode).unwrap();
+        check("sparse", &|p| sparse.get(p));
+    }
+    // A non-integer lacunarity cannot tile: a typed error, not a seam.
+    let bad = Fractal::with(|o| o.period([3, 0, 0, 0]), 0, 3, FractalMode::Fbm, 2.5, 0.5).unwrap();
+    assert!(bad.octaves() == 3);
+}
+
+#[test]
+fn gradients_through_every_mode_match_central_differences() {
+    for mode in FractalMode::ALL {
+        let f = Fractal::new(|o| Improved::new(o.seed), 4, 5, mode).unwrap();
+        let h = 1e-6;
+        let mut checked = 0;
+        for p in random_points::<3>(1500, 8) {
+            let (v, g) = f.get_gradient(p);
+            assert_eq!(v, f.get(p), "{mode:?}: value from get_gradient differs");
+            for k in 0..3 {
+                let (mut a, mut b) = (p, p);
+                a[k] += h;
+                b[k] -= h;
+                let numeric = (f.get(a) - f.get(b)) / (2.0 * h);
+                // |n| and clamps have kinks; skip the rare stencil across one.
+                let (fa, fb) = ((f.get(a) - v) / h, (v - f.get(b)) / h);
+                if (fa - fb).abs() > 1e-3 * (1.0 + fa.abs()) {
+                    continue;
+                }
+                checked += 1;
+                assert!((numeric - g[k]).abs() < 1e-5 * (1.0 + g[k].abs()), "{mode:?} d/dx{k} at {p:?}: {} vs {numeric}", g[k]);
+            }
+        }
+        assert!(checked > 4000, "{mode:?}: only {checked} smooth stencils");
+    }
+}
+
+#[test]
+fn octaves_follow_the_pixel_footprint() {
+    // 1/32 unit per pixel: octaves up to period 2 px are 2⁰…2⁴ → 5 octaves.
+    assert_eq!(Fractal::<Improved>::octaves_for_footprint(1.0 / 32.0, 2.0), 5);
+    assert_eq!(Fractal::<Improved>::octaves_for_footprint(1.0 / 1024.0, 2.0), 10);
+    assert_eq!(Fractal::<Improved>::octaves_for_footprint(4.0, 2.0), 1);
+    assert_eq!(Fractal::<Improved>::octaves_for_footprint(1e-30, 2.0), 30);
+    assert_eq!(Fractal::<Improved>::octaves_for_footprint(f64::NAN, 2.0), 1);
+}
+
+#[test]
+fn fractals_over_run_time_noises_equal_the_static_ones() {
+    let boxed = Fractal::new(|o| Box::new(Improved::new(o.seed)) as Box<dyn noiselab::DynNoise<3>>, 2, 4, FractalMode::Ridged).unwrap();
+    let fixed = Fractal::new(|o| Improved::new(o.seed), 2, 4, FractalMode::Ridged).unwrap();
+    let grid = noiselab::Grid::new([0.1, -0.2, 0.3], [0.07, 0.05, 0.0], [37, 11, 1]);
+    let (mut a, mut b) = (vec![0f32; grid.len()], vec![0f32; grid.len()]);
+    Noise::fill_grid(&boxed, &grid, &mut a).unwrap();
+    Noise::fill_grid(&fixed, &grid, &mut b).unwrap();
+    assert_eq!(a, b);
+    assert_eq!(Noise::get(&boxed, [0.3, 0.4, 0.5]), Noise::get(&fixed, [0.3, 0.4, 0.5]));
+}
+
+#[test]
+fn bad_parameters_are_typed_errors() {
+    use noiselab::ComposeError;
+    assert_eq!(Fractal::new(|o| Improved::new(o.seed), 0, 0, FractalMode::Fbm).unwrap_err(), ComposeError::Octaves(0));
+    assert_eq!(Fractal::new(|o| Improved::new(o.seed), 0, 31, FractalMode::Fbm).unwrap_err(), ComposeError::Octaves(31));
+    assert!(Fractal::with(|o| Improved::new(o.seed), 0, 3, FractalMode::Fbm, 1.0, 0.5).is_err());
+    assert!(Fractal::with(|o| Improved::new(o.seed), 0, 3, FractalMode::Fbm, 2.0, -0.5).is_err());
+    let octave = noiselab::Octave { index: 1, seed: 0, frequency: 2.5 };
+    assert!(octave.period([3, 0, 0, 0]).is_err());
+}
