@@ -80,6 +80,19 @@ pub struct NoiseArgs {
     /// Cellular: how far feature points move from cell centres, 0..=1 (default 1).
     #[arg(long)]
     pub jitter: Option<f64>,
+    /// Fractal sum of N octaves (1..=30), or `auto`: as many as the pixel size allows
+    /// (render only: stop before an octave varies faster than every two pixels).
+    #[arg(long, value_parser = render::parse_octaves)]
+    pub octaves: Option<render::Octaves>,
+    /// How octaves combine (with --octaves): fbm (default), turbulence, ridged, billow, hybrid.
+    #[arg(long, value_parser = render::parse_fractal)]
+    pub fractal: Option<noiselab::FractalMode>,
+    /// Frequency ratio between octaves (> 1, default 2).
+    #[arg(long)]
+    pub lacunarity: Option<f64>,
+    /// Amplitude ratio between octaves (> 0, default 0.5).
+    #[arg(long)]
+    pub gain: Option<f64>,
 }
 
 /// Arithmetic precision of `sample`.
@@ -98,6 +111,20 @@ pub enum Method {
     Splat,
     /// Evaluate every pixel on its own.
     Gather,
+}
+
+/// A noise built from the command line.
+pub struct Built {
+    /// The registered kind.
+    pub spec: &'static registry::KindSpec,
+    /// The noise (a fractal sum of the kind with --octaves).
+    pub field: registry::Field,
+    /// Dimensions.
+    pub dims: usize,
+    /// Documented output range (for mapping to pixels).
+    pub range: (f64, f64),
+    /// Whether --octaves made it a fractal sum.
+    pub fractal: bool,
 }
 
 /// Arguments of `noiselab sample`.
@@ -241,11 +268,32 @@ impl NoiseArgs {
     }
 
     /// Resolve the kind and build the noise, validating every parameter.
-    pub fn build(&self) -> Result<(&'static registry::KindSpec, registry::Field, usize), String> {
+    /// Resolve the kind and build the noise (a fractal sum with
+    /// `--octaves`), validating every parameter. `footprint` is the input
+    /// distance per pixel, for `--octaves auto`. Returns the kind, the
+    /// noise, its dimension and its documented range.
+    pub fn build(&self, footprint: Option<f64>) -> Result<Built, String> {
         let spec = registry::find(&self.kind)?;
         let dims = self.dims.unwrap_or(spec.default_dims);
         let params = self.params(dims);
-        let field = spec.build(&params)?;
-        Ok((spec, field, dims))
+        let base_range = (spec.range)(dims);
+        let lacunarity = self.lacunarity.unwrap_or(2.0);
+        let gain = self.gain.unwrap_or(0.5);
+        let octaves = match (self.octaves, footprint) {
+            (None, _) => {
+                if self.fractal.is_some() || self.lacunarity.is_some() || self.gain.is_some() {
+                    return Err("--fractal, --lacunarity and --gain need --octaves".into());
+                }
+                let field = spec.build(&params)?;
+                return Ok(Built { spec, field, dims, range: base_range, fractal: false });
+            }
+            (Some(render::Octaves::Count(n)), _) => n,
+            (Some(render::Octaves::Auto), Some(f)) => noiselab::Fractal::<()>::octaves_for_footprint(f, lacunarity),
+            (Some(render::Octaves::Auto), None) => return Err("--octaves auto needs a pixel size: use it with render".into()),
+        };
+        let mode = self.fractal.unwrap_or_default();
+        let field = registry::fractal(spec, &params, octaves, mode, lacunarity, gain)?;
+        let r = base_range.0.abs().max(base_range.1.abs());
+        Ok(Built { spec, field, dims, range: mode.range(r), fractal: true })
     }
 }

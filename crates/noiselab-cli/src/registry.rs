@@ -346,6 +346,32 @@ pub static KINDS: &[KindSpec] = &[
     },
 ];
 
+/// `params`' noise as a fractal sum: octave i is the kind built with seed
+/// `seed + i`, combined by `mode`.
+pub fn fractal(spec: &KindSpec, params: &Params, octaves: u32, mode: noiselab::FractalMode, lacunarity: f64, gain: f64) -> Result<Field, String> {
+    // A tiled octave i keeps the whole tile as its period: tile·lacunarityⁱ cells.
+    let tile = |i: u32| -> Result<Option<[u32; 4]>, String> {
+        let Some(t) = params.tile else { return Ok(None) };
+        let octave = noiselab::Octave { index: i, seed: 0, frequency: lacunarity.powi(i as i32) };
+        octave.period(t).map(Some).map_err(|e| format!("--tile with --octaves: {e}"))
+    };
+    let fields = (0..octaves)
+        .map(|i| spec.build(&Params { seed: params.seed.wrapping_add(i), tile: tile(i)?, ..params.clone() }))
+        .collect::<Result<Vec<Field>, String>>()?;
+    macro_rules! sum {
+        ($($v:ident),*) => {
+            match fields.first() {
+                $(Some(Field::$v(_)) => {
+                    let boxes = fields.into_iter().map(|f| match f { Field::$v(b) => b, _ => unreachable!("octaves share a dimension") }).collect();
+                    Field::$v(Box::new(noiselab::Fractal::from_octaves(boxes, mode, lacunarity, gain).map_err(|e| e.to_string())?))
+                })*
+                None => unreachable!("at least one octave"),
+            }
+        };
+    }
+    Ok(sum!(D1, D2, D3, D4, D5, D6, D7, D8))
+}
+
 /// Look a kind up by name.
 pub fn find(name: &str) -> Result<&'static KindSpec, String> {
     KINDS.iter().find(|k| k.name == name).ok_or_else(|| {

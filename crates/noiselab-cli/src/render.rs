@@ -10,7 +10,7 @@ use crate::RenderArgs;
 const MAX_PIXELS: usize = 1 << 28;
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
-    let (spec, field, dims) = args.noise.build()?;
+    let crate::Built { spec, field, dims, range, fractal } = args.noise.build(Some(1.0 / args.scale))?;
     let format = Format::from_path(&args.output)?;
     let (width, height) = args.size;
     width.checked_mul(height).filter(|&n| n <= MAX_PIXELS).ok_or_else(|| {
@@ -33,13 +33,16 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         return Err(format!("--method applies to sparse only, not {}", spec.name));
     }
     let step = 1.0 / args.scale;
-    let values = if sparse && dims >= 2 && args.method != Some(Method::Gather) {
+    if fractal && args.method == Some(Method::Splat) {
+        return Err("--method splat renders one sparse octave; fractal sums are evaluated point by point".into());
+    }
+    let values = if sparse && !fractal && dims >= 2 && args.method != Some(Method::Gather) {
         let noise = registry::sparse_noise(&args.noise.params(dims))?;
         splat(&noise, dims, args.origin, &slice, step, (width, height))?
     } else {
         window(&field, dims, args.origin, &slice, step, (width, height))?
     };
-    let image = Image { width, height, values: &values, range: (spec.range)(dims) };
+    let image = Image { width, height, values: &values, range };
     pending.finish(|w| format.write(w, &image, args.bits))
 }
 
@@ -172,6 +175,34 @@ pub fn parse_tile(s: &str) -> Result<Tile, String> {
         return Err(format!("at least one period must be positive, got '{s}'"));
     }
     Ok(Tile(cells))
+}
+
+/// `--octaves`: a count or `auto`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Octaves {
+    /// This many octaves.
+    Count(u32),
+    /// From the pixel footprint.
+    Auto,
+}
+
+/// `N` (1..=30) or `auto`.
+pub fn parse_octaves(s: &str) -> Result<Octaves, String> {
+    if s.trim() == "auto" {
+        return Ok(Octaves::Auto);
+    }
+    match s.trim().parse::<u32>() {
+        Ok(n) if (1..=noiselab::compose::MAX_OCTAVES).contains(&n) => Ok(Octaves::Count(n)),
+        _ => Err(format!("--octaves must be 1..={} or auto, got {s}", noiselab::compose::MAX_OCTAVES)),
+    }
+}
+
+/// A fractal mode by name.
+pub fn parse_fractal(s: &str) -> Result<noiselab::FractalMode, String> {
+    noiselab::FractalMode::ALL.into_iter().find(|m| m.name() == s.trim()).ok_or_else(|| {
+        let names: Vec<&str> = noiselab::FractalMode::ALL.iter().map(|m| m.name()).collect();
+        format!("--fractal must be one of {}, got {s}", names.join(", "))
+    })
 }
 
 /// A positive whole number.

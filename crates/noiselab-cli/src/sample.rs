@@ -4,7 +4,7 @@ use crate::{Precision, SampleArgs};
 use std::io::{BufRead, BufWriter, Write};
 
 pub fn run(args: &SampleArgs) -> Result<(), String> {
-    let (_, field, dims) = args.noise.build()?;
+    let crate::Built { field, dims, .. } = args.noise.build(None)?;
     let stdin = std::io::stdin();
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());

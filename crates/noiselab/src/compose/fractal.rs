@@ -220,6 +220,21 @@ impl<N> Fractal<N> {
         Ok(Fractal { octaves, mode, lacunarity, gain })
     }
 
+    /// From octaves already made (octave i read at lacunarityⁱ·p), e.g.
+    /// noises chosen at run time.
+    pub fn from_octaves(octaves: Vec<N>, mode: FractalMode, lacunarity: f64, gain: f64) -> Result<Fractal<N>, ComposeError> {
+        if !(1..=MAX_OCTAVES as usize).contains(&octaves.len()) {
+            return Err(ComposeError::Octaves(octaves.len() as u32));
+        }
+        if !(lacunarity.is_finite() && lacunarity > 1.0) {
+            return Err(ComposeError::Lacunarity(lacunarity));
+        }
+        if !(gain.is_finite() && gain > 0.0) {
+            return Err(ComposeError::Gain(gain));
+        }
+        Ok(Fractal { octaves, mode, lacunarity, gain })
+    }
+
     /// Perlin's rule from the talk: stop before an octave would vary faster
     /// than about once every two pixels. With `footprint` input units per
     /// pixel (a base of about one feature per unit), that is
