@@ -2,6 +2,7 @@
 
 mod analyze;
 mod output;
+mod recipes;
 mod registry;
 mod report;
 mod render;
@@ -156,6 +157,10 @@ pub struct RenderArgs {
     /// Coordinates of the slice for 3D and 4D noise, Z[,W,…].
     #[arg(long, allow_hyphen_values = true, value_parser = render::parse_slice)]
     pub slice: Option<render::Slice>,
+    /// Recipes (marble, wood, clouds, flame, planet, stucco, bump, hypertexture): the 3D noise kind
+    /// they are made of (default improved); the noise options above apply to it.
+    #[arg(long)]
+    pub base: Option<String>,
     /// Sparse convolution: splat impulses into the image (fast, default for 2D
     /// windows and slices) or gather them per pixel (point evaluation); same image within 1e-5.
     #[arg(long, value_enum)]
@@ -244,6 +249,7 @@ fn main() -> ExitCode {
 }
 
 fn list() {
+    println!("kinds:");
     for k in registry::KINDS {
         println!("{:<10} dims {}..={} (default {})  {}", k.name, k.dims.start(), k.dims.end(), k.default_dims, k.summary);
         for (i, (name, what)) in k.variants.iter().enumerate() {
@@ -251,6 +257,11 @@ fn list() {
             println!("{:<12}--variant {name}{default}: {what}", "");
         }
     }
+    println!("recipes (render only; --base KIND picks the 3D noise, improved by default; --slice T is time):");
+    for r in recipes::RECIPES {
+        println!("{:<12} {}", r.name, r.summary);
+    }
+    println!("fractal sums of any kind: --octaves N|auto --fractal fbm|turbulence|ridged|billow|hybrid");
 }
 
 impl NoiseArgs {

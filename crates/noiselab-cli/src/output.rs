@@ -80,6 +80,23 @@ fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
     }
 }
 
+/// An 8-bit RGB PNG of linear colours in [0, 1] (sRGB-encoded on the way
+/// out, so ramps interpolate in linear light).
+pub fn write_rgb_png(w: &mut dyn Write, width: usize, height: usize, rgb: &[[f32; 3]]) -> std::io::Result<()> {
+    let mut enc = png::Encoder::new(w, width as u32, height as u32);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    let encode = |c: f32| {
+        let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+        let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        (s * 255.0).round() as u8
+    };
+    let data: Vec<u8> = rgb.iter().flat_map(|p| p.map(encode)).collect();
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    writer.write_image_data(&data).map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
+
 fn write_png(w: &mut dyn Write, image: &Image, bits: u8) -> std::io::Result<()> {
     let mut enc = png::Encoder::new(w, image.width as u32, image.height as u32);
     enc.set_color(png::ColorType::Grayscale);

@@ -10,6 +10,12 @@ use crate::RenderArgs;
 const MAX_PIXELS: usize = 1 << 28;
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
+    if let Some(recipe) = crate::recipes::find(&args.noise.kind) {
+        return render_recipe(recipe, args);
+    }
+    if args.base.is_some() {
+        return Err(format!("--base applies to recipes only, not {}", args.noise.kind));
+    }
     let crate::Built { spec, field, dims, range, fractal } = args.noise.build(Some(1.0 / args.scale))?;
     let format = Format::from_path(&args.output)?;
     let (width, height) = args.size;
@@ -44,6 +50,35 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     let image = Image { width, height, values: &values, range };
     pending.finish(|w| format.write(w, &image, args.bits))
+}
+
+/// A recipe over its base noise: the coloured picture (PNG) or the scalar
+/// field (.npy, .f32). Time is `--slice`'s first value.
+fn render_recipe(recipe: &crate::recipes::RecipeSpec, args: &RenderArgs) -> Result<(), String> {
+    let format = Format::from_path(&args.output)?;
+    let (width, height) = args.size;
+    width.checked_mul(height).filter(|&n| n <= MAX_PIXELS).ok_or_else(|| format!("--size {width}x{height} has more than {MAX_PIXELS} pixels"))?;
+    if args.method.is_some() {
+        return Err("--method applies to sparse only".into());
+    }
+    let mut noise = args.noise.clone();
+    noise.kind = args.base.clone().unwrap_or_else(|| "improved".into());
+    if noise.dims.is_some_and(|d| d != 3) {
+        return Err(format!("recipes read 3D noise; --dims {} does not apply", noise.dims.unwrap_or(3)));
+    }
+    noise.dims = Some(3);
+    let crate::Built { field, .. } = noise.build(Some(1.0 / width.max(height) as f64))?;
+    let registry::Field::D3(base) = field else { unreachable!("dims fixed to 3") };
+    let t = args.slice.as_ref().and_then(|s| s.0.first().copied()).unwrap_or(0.0);
+    let pending = crate::output::Pending::create(&args.output, args.force)?;
+    let (values, rgb) = crate::recipes::render(recipe, &base, (width, height), t);
+    match format {
+        Format::Png => pending.finish(|w| crate::output::write_rgb_png(w, width, height, &rgb)),
+        _ => {
+            let image = Image { width, height, values: &values, range: (0.0, 1.0) };
+            pending.finish(|w| format.write(w, &image, args.bits))
+        }
+    }
 }
 
 /// The same window as [`window`], rendered by splatting sparse convolution

@@ -346,3 +346,46 @@ fn cellular_and_fast_kinds_render() {
     assert_one_line_error(&noiselab().args(["render", "worley", "--metric", "taxicab", "-o"]).arg(&bad).output().unwrap(), "--metric");
     assert_one_line_error(&noiselab().args(["render", "value", "--jitter", "0.5", "-o"]).arg(&bad).output().unwrap(), "--jitter");
 }
+
+#[test]
+fn recipes_render_pictures_and_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    for recipe in ["marble", "wood", "clouds", "flame", "planet", "stucco", "bump", "hypertexture"] {
+        let png_path = dir.path().join(format!("{recipe}.png"));
+        let out = noiselab().args(["render", recipe, "--size", "48x40", "-o"]).arg(&png_path).output().unwrap();
+        assert!(out.status.success(), "{recipe}: {}", stderr_of(&out));
+        let reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
+        let info = reader.info();
+        assert_eq!((info.width, info.height, info.color_type), (48, 40, png::ColorType::Rgb), "{recipe}");
+        let npy = dir.path().join(format!("{recipe}.npy"));
+        let out = noiselab().args(["render", recipe, "--size", "48x40", "--base", "value", "--slice", "0.25", "-o"]).arg(&npy).output().unwrap();
+        assert!(out.status.success(), "{recipe}: {}", stderr_of(&out));
+        let values = npy_values(&npy);
+        assert_eq!(values.len(), 48 * 40);
+        assert!(values.iter().all(|v| v.is_finite()) && values.iter().any(|&v| v != values[0]), "{recipe}: flat or non-finite field");
+        // Deterministic: the same command gives the same field.
+        let again = dir.path().join(format!("{recipe}-again.npy"));
+        noiselab().args(["render", recipe, "--size", "48x40", "--base", "value", "--slice", "0.25", "-o"]).arg(&again).assert().success();
+        assert_eq!(npy_values(&again), values, "{recipe}");
+    }
+    let bad = dir.path().join("bad.png");
+    assert_one_line_error(&noiselab().args(["render", "value", "--base", "improved", "-o"]).arg(&bad).output().unwrap(), "--base");
+    assert_one_line_error(&noiselab().args(["render", "marble", "--dims", "2", "-o"]).arg(&bad).output().unwrap(), "--dims");
+    assert_one_line_error(&noiselab().args(["render", "marble", "--base", "simplex-n", "--variant", "x", "-o"]).arg(&bad).output().unwrap(), "variant");
+}
+
+#[test]
+fn fractal_options_on_the_command_line() {
+    let out = noiselab().args(["sample", "improved", "--octaves", "4", "--fractal", "ridged"]).write_stdin("0.3 0.4 0.5\n").output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let v: f64 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
+    let f = noiselab::Fractal::new(|o| noiselab::Improved::new(o.seed), 0, 4, noiselab::FractalMode::Ridged).unwrap();
+    assert_eq!(v, noiselab::Noise::get(&f, [0.3, 0.4, 0.5]));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("auto.npy");
+    noiselab().args(["render", "value", "--dims", "2", "--octaves", "auto", "--scale", "64", "--size", "32x32", "-o"]).arg(&path).assert().success();
+    assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "auto"]).write_stdin("0 0 0\n").output().unwrap(), "auto");
+    assert_one_line_error(&noiselab().args(["sample", "value", "--fractal", "ridged"]).write_stdin("0 0 0\n").output().unwrap(), "--octaves");
+    assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "31"]).write_stdin("0 0 0\n").output().unwrap(), "--octaves");
+    assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "3", "--lacunarity", "1"]).write_stdin("0 0 0\n").output().unwrap(), "lacunarity");
+}

@@ -59,6 +59,7 @@ pub mod grid;
 pub mod hash;
 pub mod kinds;
 pub mod lanes;
+pub mod recipes;
 mod noise;
 
 pub use compose::{ComposeError, Fractal, FractalMode, Looped, Octave, Warp};

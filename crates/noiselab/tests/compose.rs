@@ -65,3 +65,19 @@ fn warps_compose_with_tiling() {
     }
     assert!(worst < 1e-9, "warped tile differs across its period by {worst}");
 }
+
+#[test]
+fn time_varying_solids_loop_in_4d_and_by_tiling_time() {
+    // 4D noise with time as the fourth axis: Perlin's blend loop and, the
+    // exact alternative, a period on the time axis.
+    let blend = Looped::new(Improved::new(5), 4.0).unwrap();
+    let tiled = Improved::new(5).with_period([0, 0, 0, 4]).unwrap();
+    let mut rng = SplitMix64(44);
+    for _ in 0..1000 {
+        let p: [f64; 3] = core::array::from_fn(|_| (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 10.0 - 5.0);
+        let at = |t: f64| [p[0], p[1], p[2], t];
+        assert_eq!(blend.get(at(0.0)).to_bits(), blend.get(at(4.0)).to_bits());
+        assert_eq!(tiled.get(at(0.0)).to_bits(), tiled.get(at(4.0)).to_bits());
+        assert_eq!(tiled.get(at(1.25)).to_bits(), tiled.get(at(5.25)).to_bits());
+    }
+}
