@@ -1,6 +1,7 @@
 //! `noiselab`: sample and render procedural noise from the command line.
 
 mod analyze;
+mod gallery;
 mod output;
 mod recipes;
 mod registry;
@@ -20,6 +21,9 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Render every kind, variant, fractal and recipe into a folder (./gallery)
+    /// with an index.html giving each picture's command and render time.
+    Gallery(GalleryArgs),
     /// List the noise kinds with their dimensions and variants.
     List,
     /// Read points from standard input (one per line, coordinates separated by
@@ -36,6 +40,14 @@ enum Command {
     /// Render every kind at a matched peak frequency, analyse it, and write
     /// the published comparison (docs/quality.md and its pictures).
     Report(ReportArgs),
+}
+
+/// Arguments of `noiselab gallery`.
+#[derive(Args, Debug)]
+pub struct GalleryArgs {
+    /// Folder receiving the pictures and index.html.
+    #[arg(long, default_value = "gallery")]
+    pub out: std::path::PathBuf,
 }
 
 /// Arguments of `noiselab report`.
@@ -230,6 +242,7 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
+        Command::Gallery(args) => gallery::run(&args),
         Command::List => {
             list();
             Ok(())

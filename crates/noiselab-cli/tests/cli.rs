@@ -389,3 +389,27 @@ fn fractal_options_on_the_command_line() {
     assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "31"]).write_stdin("0 0 0\n").output().unwrap(), "--octaves");
     assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "3", "--lacunarity", "1"]).write_stdin("0 0 0\n").output().unwrap(), "lacunarity");
 }
+
+#[test]
+fn gallery_renders_everything_with_its_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = noiselab().args(["gallery", "--out"]).arg(dir.path()).output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let html = fs::read_to_string(dir.path().join("index.html")).unwrap();
+    for name in ["classic", "improved", "simplex", "value", "modified", "sparse", "worley", "fast", "marble", "wood", "clouds", "flame", "planet", "stucco", "bump", "hypertexture", "figure1a", "tiled-improved", "fractal-ridged"] {
+        assert!(html.contains(name), "{name} missing from the gallery");
+    }
+    let images: Vec<&str> = html.split("<img src=\"").skip(1).map(|s| s.split('"').next().unwrap()).collect();
+    assert!(images.len() >= 40, "{} pictures", images.len());
+    for image in images {
+        let file = fs::File::open(dir.path().join(image)).unwrap_or_else(|e| panic!("{image}: {e}"));
+        png::Decoder::new(std::io::BufReader::new(file)).read_info().unwrap();
+    }
+    // Each caption's command, run again, gives the same picture.
+    let caption = html.split("<code>noiselab render ").nth(1).unwrap().split("</code>").next().unwrap();
+    let args: Vec<&str> = caption.split_whitespace().collect();
+    let (file, render_args) = (args[args.len() - 1], &args[..args.len() - 2]);
+    let again = dir.path().join("again.png");
+    noiselab().arg("render").args(render_args).arg("-o").arg(&again).assert().success();
+    assert_eq!(fs::read(dir.path().join(file)).unwrap(), fs::read(&again).unwrap(), "{caption}");
+}
