@@ -59,6 +59,8 @@ fn entries() -> Vec<Entry> {
             &format!("improved --octaves auto --fractal {} --size 256x256 --scale 64 --slice 0.5", mode.name()),
         ));
     }
+    list.push(entry("a seamless loop: 3D improved noise animated along z (animated PNG)", "loop-improved", "improved --frames 48 --loop --time-step 0.04 --size 192x192 --scale 48 --slice 0"));
+    list.push(entry("a seamless loop of sparse convolution noise", "loop-sparse", "sparse --frames 48 --loop --time-step 0.04 --size 192x192 --scale 48 --slice 0"));
     for r in crate::recipes::RECIPES {
         list.push(entry(&format!("{}: {}", r.name, r.summary), r.name, &format!("{} --size 256x256", r.name)));
     }

@@ -21,6 +21,13 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell) to standard output.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print the man page (roff) to standard output.
+    Man,
     /// Render every kind, variant, fractal and recipe into a folder (./gallery)
     /// with an index.html giving each picture's command and render time.
     Gallery(GalleryArgs),
@@ -177,6 +184,15 @@ pub struct RenderArgs {
     /// windows and slices) or gather them per pixel (point evaluation); same image within 1e-5.
     #[arg(long, value_enum)]
     pub method: Option<Method>,
+    /// Animate: render N frames along the noise's last axis (time), as an animated PNG or a 3D .npy.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=1000))]
+    pub frames: Option<u32>,
+    /// With --frames: loop seamlessly (Perlin's blend over frames × time step).
+    #[arg(long = "loop")]
+    pub r#loop: bool,
+    /// With --frames: time between frames, in cells (default 0.05).
+    #[arg(long, default_value_t = 0.05)]
+    pub time_step: f64,
     /// Bits per PNG sample (8 or 16).
     #[arg(long, default_value_t = 8, value_parser = render::parse_bits)]
     pub bits: u8,
@@ -243,6 +259,15 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Gallery(args) => gallery::run(&args),
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            clap_complete::generate(shell, &mut Cli::command(), "noiselab", &mut std::io::stdout());
+            Ok(())
+        }
+        Command::Man => {
+            use clap::CommandFactory;
+            clap_mangen::Man::new(Cli::command()).render(&mut std::io::stdout()).map_err(|e| format!("cannot write the man page: {e}"))
+        }
         Command::List => {
             list();
             Ok(())

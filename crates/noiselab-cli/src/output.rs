@@ -21,6 +21,8 @@ pub enum Format {
     Npy,
     /// Raw little-endian float32, row-major: exact values.
     F32,
+    /// OpenEXR, one 32-bit float channel "Y": exact values, for compositors.
+    Exr,
 }
 
 impl Format {
@@ -30,7 +32,8 @@ impl Format {
             Some("png") => Ok(Format::Png),
             Some("npy") => Ok(Format::Npy),
             Some("f32") => Ok(Format::F32),
-            _ => Err(format!("{}: unknown output format (use .png, .npy or .f32)", path.display())),
+            Some("exr") => Ok(Format::Exr),
+            _ => Err(format!("{}: unknown output format (use .png, .npy, .f32 or .exr)", path.display())),
         }
     }
 
@@ -42,8 +45,20 @@ impl Format {
                 write_f32_le(w, image.values)
             }
             Format::F32 => write_f32_le(w, image.values),
+            Format::Exr => write_exr(w, image),
         }
     }
+}
+
+/// One float channel "Y", losslessly compressed. The exr crate writes to a
+/// seekable sink, so the file is assembled in memory first.
+fn write_exr(w: &mut dyn Write, image: &Image) -> std::io::Result<()> {
+    use exr::prelude::*;
+    let channel = AnyChannel::new("Y", FlatSamples::F32(image.values.to_vec()));
+    let layer = Layer::new((image.width, image.height), LayerAttributes::named("noise"), Encoding::FAST_LOSSLESS, AnyChannels::sort(SmallVec::from_vec(vec![channel])));
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    exr::prelude::Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(std::io::Error::other)?;
+    w.write_all(bytes.get_ref())
 }
 
 fn write_f32_le(w: &mut dyn Write, values: &[f32]) -> std::io::Result<()> {
@@ -78,6 +93,22 @@ fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
     } else {
         t.clamp(0.0, 1.0)
     }
+}
+
+/// An animated PNG (APNG) of grey frames mapped from `range`, 25 frames
+/// per second, looping forever.
+pub fn write_apng<'a>(w: &mut dyn Write, width: usize, height: usize, frames: impl ExactSizeIterator<Item = &'a [f32]>, range: (f64, f64)) -> std::io::Result<()> {
+    let mut enc = png::Encoder::new(w, width as u32, height as u32);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_animated(frames.len() as u32, 0).map_err(std::io::Error::other)?;
+    enc.set_frame_delay(1, 25).map_err(std::io::Error::other)?;
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    for frame in frames {
+        let data: Vec<u8> = frame.iter().map(|&v| (unit(v, range) * 255.0).round() as u8).collect();
+        writer.write_image_data(&data).map_err(std::io::Error::other)?;
+    }
+    writer.finish().map_err(std::io::Error::other)
 }
 
 /// An 8-bit RGB PNG of linear colours in [0, 1] (sRGB-encoded on the way

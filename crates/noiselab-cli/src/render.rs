@@ -31,6 +31,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             dims.saturating_sub(2)
         ));
     }
+    if let Some(frames) = args.frames {
+        return animate(args, field, dims, range, &slice, frames, format);
+    }
+    if args.r#loop {
+        return Err("--loop needs --frames".into());
+    }
     // Open the destination first, so a bad path fails before any work.
     let pending = crate::output::Pending::create(&args.output, args.force)?;
 
@@ -50,6 +56,57 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     let image = Image { width, height, values: &values, range };
     pending.finish(|w| format.write(w, &image, args.bits))
+}
+
+/// An animation along the noise's last axis (time): `frames` frames
+/// `--time-step` apart, as an animated PNG (looping forever) or a
+/// (frames, height, width) `.npy`. With `--loop` the noise is Perlin's
+/// blend loop over frames × step, so the last frame leads seamlessly back
+/// to the first.
+fn animate(args: &RenderArgs, field: Field, dims: usize, range: (f64, f64), slice: &[f64], frames: u32, format: Format) -> Result<(), String> {
+    if dims < 3 {
+        return Err(format!("--frames animates the last axis of 3D or 4D noise; this is {dims}D (use --dims 3)"));
+    }
+    if !matches!(format, Format::Png | Format::Npy) {
+        return Err("--frames writes an animated .png or a (frames, height, width) .npy".into());
+    }
+    let dt = args.time_step;
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(format!("--time-step must be positive, got {dt}"));
+    }
+    let field = if args.r#loop {
+        let length = frames as f64 * dt;
+        macro_rules! looped {
+            ($($v:ident),*) => {
+                match field {
+                    $(Field::$v(n) => Field::$v(Box::new(noiselab::Looped::new(n, length).map_err(|e| e.to_string())?)),)*
+                    other => other,
+                }
+            };
+        }
+        looped!(D3, D4)
+    } else {
+        field
+    };
+    let pending = crate::output::Pending::create(&args.output, args.force)?;
+    let (width, height) = args.size;
+    let mut slice = slice.to_vec();
+    slice.resize(dims - 2, 0.0);
+    let t0 = slice[dims - 3];
+    let mut all = Vec::with_capacity(frames as usize * width * height);
+    for k in 0..frames {
+        slice[dims - 3] = t0 + k as f64 * dt;
+        all.extend(window(&field, dims, args.origin, &slice, 1.0 / args.scale, (width, height))?);
+    }
+    let frame_len = width * height;
+    pending.finish(|w| match format {
+        Format::Npy => {
+            w.write_all(&crate::output::npy_header(&[frames as usize, height, width]))?;
+            let bytes: Vec<u8> = all.iter().flat_map(|v| v.to_le_bytes()).collect();
+            w.write_all(&bytes)
+        }
+        _ => crate::output::write_apng(w, width, height, all.chunks(frame_len), range),
+    })
 }
 
 /// A recipe over its base noise: the coloured picture (PNG) or the scalar

@@ -413,3 +413,53 @@ fn gallery_renders_everything_with_its_command() {
     noiselab().arg("render").args(render_args).arg("-o").arg(&again).assert().success();
     assert_eq!(fs::read(dir.path().join(file)).unwrap(), fs::read(&again).unwrap(), "{caption}");
 }
+
+#[test]
+fn animations_are_animated_pngs_and_loop_seamlessly() {
+    let dir = tempfile::tempdir().unwrap();
+    let apng = dir.path().join("loop.png");
+    noiselab().args(["render", "improved", "--frames", "8", "--loop", "--size", "32x24", "-o"]).arg(&apng).assert().success();
+    let reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&apng).unwrap())).read_info().unwrap();
+    assert_eq!(reader.info().animation_control.map(|a| (a.num_frames, a.num_plays)), Some((8, 0)));
+    // The (frames, height, width) field: with --loop the last frame is one
+    // step from the first (the blend moves a few times faster there than
+    // mid-loop); without it, far apart.
+    let wrap_ratio = |looped: bool| {
+        let path = dir.path().join(format!("{looped}.npy"));
+        let mut cmd = noiselab();
+        cmd.args(["render", "value", "--frames", "8", "--time-step", "0.05", "--size", "32x24", "-o"]).arg(&path);
+        if looped {
+            cmd.arg("--loop");
+        }
+        cmd.assert().success();
+        let v = npy_values(&path);
+        let frame = |k: usize| &v[k * 768..(k + 1) * 768];
+        let diff = |a: &[f32], b: &[f32]| a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum::<f32>();
+        diff(frame(7), frame(0)) / diff(frame(1), frame(0))
+    };
+    let (looped, unlooped) = (wrap_ratio(true), wrap_ratio(false));
+    assert!(looped < 5.0 && unlooped > 20.0 * looped, "wrap/step: looped {looped}, unlooped {unlooped}");
+    let bad = dir.path().join("bad.png");
+    assert_one_line_error(&noiselab().args(["render", "value", "--dims", "2", "--frames", "4", "-o"]).arg(&bad).output().unwrap(), "--frames");
+    assert_one_line_error(&noiselab().args(["render", "value", "--frames", "1", "-o"]).arg(&bad).output().unwrap(), "--frames");
+    assert_one_line_error(&noiselab().args(["render", "value", "--loop", "-o"]).arg(&bad).output().unwrap(), "--loop");
+    assert_one_line_error(&noiselab().args(["render", "value", "--frames", "3", "-o"]).arg(dir.path().join("a.exr")).output().unwrap(), "--frames");
+}
+
+#[test]
+fn exr_output_holds_exact_values_and_completions_and_man_page_exist() {
+    let dir = tempfile::tempdir().unwrap();
+    let (exr, npy) = (dir.path().join("v.exr"), dir.path().join("v.npy"));
+    for path in [&exr, &npy] {
+        noiselab().args(["render", "simplex", "--dims", "2", "--size", "40x30", "-o"]).arg(path).assert().success();
+    }
+    let a = noiselab_analysis::io::read_field(&exr, None).unwrap();
+    let b = noiselab_analysis::io::read_field(&npy, None).unwrap();
+    assert_eq!(a, b);
+    for shell in ["bash", "zsh", "fish"] {
+        let out = noiselab().args(["completions", shell]).output().unwrap();
+        assert!(out.status.success() && String::from_utf8_lossy(&out.stdout).contains("gallery"), "{shell}");
+    }
+    let man = noiselab().arg("man").output().unwrap();
+    assert!(man.status.success() && String::from_utf8_lossy(&man.stdout).contains(".TH noiselab"));
+}
