@@ -95,6 +95,32 @@ fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
     }
 }
 
+/// A grey PNG written band by band (rows, mapped from `range`), so only one
+/// band is ever held.
+pub fn write_png_bands(
+    w: &mut dyn Write,
+    (width, height): (usize, usize),
+    bits: u8,
+    range: (f64, f64),
+    bands: impl Iterator<Item = Vec<f32>>,
+) -> std::io::Result<()> {
+    let mut enc = png::Encoder::new(w, width as u32, height as u32);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(if bits == 16 { png::BitDepth::Sixteen } else { png::BitDepth::Eight });
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    let mut stream = writer.stream_writer().map_err(std::io::Error::other)?;
+    for values in bands {
+        let data: Vec<u8> = if bits == 16 {
+            values.iter().flat_map(|&v| ((unit(v, range) * 65535.0).round() as u16).to_be_bytes()).collect()
+        } else {
+            values.iter().map(|&v| (unit(v, range) * 255.0).round() as u8).collect()
+        };
+        stream.write_all(&data)?;
+    }
+    stream.finish().map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
+
 /// An animated PNG (APNG) of grey frames mapped from `range`, 25 frames
 /// per second, looping forever.
 pub fn write_apng<'a>(w: &mut dyn Write, width: usize, height: usize, frames: impl ExactSizeIterator<Item = &'a [f32]>, range: (f64, f64)) -> std::io::Result<()> {

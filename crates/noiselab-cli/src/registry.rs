@@ -101,6 +101,19 @@ impl Field {
     pub fn fill_grid(&self, origin: &[f64], step: &[f64], size: &[usize], out: &mut [f32]) -> Result<(), GridError> {
         with_field!(self, n, D => n.fill_grid(&Grid::new(array(origin), array(step), array(size)), out))
     }
+
+    /// Rows `rows` of the 2D window of the grid (`size` beyond x and y must
+    /// be 1), as the whole grid would compute them: each point is the
+    /// grid's own `f32` point, so a band equals the same rows of a whole
+    /// render bit for bit.
+    pub fn fill_rows(&self, origin: &[f64], step: &[f64], size: &[usize], rows: std::ops::Range<usize>, out: &mut [f32]) {
+        with_field!(self, n, D => {
+            let grid = Grid::<D>::new(array(origin), array(step), array(size));
+            let width = size[0];
+            let points: Vec<[f32; D]> = (rows.start * width..rows.end * width).map(|k| grid.point(k)).collect();
+            n.fill_points(&points, out)
+        })
+    }
 }
 
 macro_rules! field {

@@ -463,3 +463,22 @@ fn exr_output_holds_exact_values_and_completions_and_man_page_exist() {
     let man = noiselab().arg("man").output().unwrap();
     assert!(man.status.success() && String::from_utf8_lossy(&man.stdout).contains(".TH noiselab"));
 }
+
+#[test]
+fn streamed_renders_equal_in_memory_ones() {
+    // 2048×2049 crosses the streaming threshold; 2048×2048 does not. The
+    // shared rows are the same bits, in .npy and in PNG.
+    let dir = tempfile::tempdir().unwrap();
+    let (small, large) = (dir.path().join("small.npy"), dir.path().join("large.npy"));
+    noiselab().args(["render", "value", "--size", "2048x2048", "--scale", "100", "-o"]).arg(&small).assert().success();
+    noiselab().args(["render", "value", "--size", "2048x2049", "--scale", "100", "-o"]).arg(&large).assert().success();
+    let (a, b) = (npy_values(&small), npy_values(&large));
+    assert_eq!(b.len(), 2048 * 2049);
+    assert_eq!(&b[..a.len()], &a[..]);
+    let png_path = dir.path().join("large.png");
+    noiselab().args(["render", "value", "--size", "2048x2049", "--scale", "100", "--bits", "16", "-o"]).arg(&png_path).assert().success();
+    let mut reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    reader.next_frame(&mut buf).unwrap();
+    assert_eq!((reader.info().width, reader.info().height), (2048, 2049));
+}
