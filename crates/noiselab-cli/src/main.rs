@@ -184,6 +184,16 @@ pub struct RenderArgs {
     /// windows and slices) or gather them per pixel (point evaluation); same image within 1e-5.
     #[arg(long, value_enum)]
     pub method: Option<Method>,
+    /// Map values LO,HI (instead of the kind's documented range) to black..white or the ramp's ends.
+    #[arg(long, allow_hyphen_values = true, value_parser = render::parse_range)]
+    pub range: Option<(f64, f64)>,
+    /// Colour PNGs through a ramp: grey, marble, wood, sky, flame.
+    #[arg(long, value_parser = render::parse_ramp)]
+    pub ramp: Option<noiselab::recipes::Ramp>,
+    /// Render a volume of N slices along z (3D/4D noise; z spacing = pixel spacing): a (z, y, x) .npy,
+    /// or numbered PNGs NAME-000.png … for an output NAME.png.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub depth: Option<u32>,
     /// Animate: render N frames along the noise's last axis (time), as an animated PNG or a 3D .npy.
     #[arg(long, value_parser = clap::value_parser!(u32).range(2..=1000))]
     pub frames: Option<u32>,

@@ -23,9 +23,13 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         return Err(format!("--base applies to recipes only, not {}", args.noise.kind));
     }
     let crate::Built { spec, field, dims, range, fractal } = args.noise.build(Some(1.0 / args.scale))?;
+    let range = args.range.unwrap_or(range);
+    if args.ramp.is_some() && (!args.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) || args.frames.is_some()) {
+        return Err("--ramp colours a still .png".into());
+    }
     let format = Format::from_path(&args.output)?;
     let (width, height) = args.size;
-    let limit = if matches!(format, Format::Png | Format::Npy | Format::F32) && spec.name != "sparse" && args.frames.is_none() {
+    let limit = if matches!(format, Format::Png | Format::Npy | Format::F32) && spec.name != "sparse" && args.frames.is_none() && args.ramp.is_none() {
         MAX_STREAM_PIXELS
     } else {
         MAX_PIXELS
@@ -40,6 +44,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             dims.saturating_sub(2)
         ));
     }
+    if let Some(depth) = args.depth {
+        if args.frames.is_some() {
+            return Err("--depth and --frames cannot be combined".into());
+        }
+        return volume(args, &field, dims, range, &slice, depth as usize, format);
+    }
     if let Some(frames) = args.frames {
         return animate(args, field, dims, range, &slice, frames, format);
     }
@@ -50,7 +60,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let pending = crate::output::Pending::create(&args.output, args.force)?;
 
     let sparse = spec.name == "sparse";
-    let streamable = matches!(format, Format::Png | Format::Npy | Format::F32) && dims >= 2 && !sparse;
+    let streamable = matches!(format, Format::Png | Format::Npy | Format::F32) && dims >= 2 && !sparse && args.ramp.is_none();
     if streamable && width * height > STREAM_PIXELS {
         return stream(args, &field, dims, &slice, range, format, pending);
     }
@@ -67,8 +77,77 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     } else {
         window(&field, dims, args.origin, &slice, step, (width, height))?
     };
+    if let (Some(ramp), Format::Png) = (args.ramp, format) {
+        let rgb: Vec<[f32; 3]> = values.iter().map(|&v| ramp.at((v as f64 - range.0) / (range.1 - range.0))).collect();
+        return pending.finish(|w| crate::output::write_rgb_png(w, width, height, &rgb));
+    }
     let image = Image { width, height, values: &values, range };
     pending.finish(|w| format.write(w, &image, args.bits))
+}
+
+/// `LO,HI` with LO < HI, both finite.
+pub fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    match parse_list(s)?.as_slice() {
+        [lo, hi] if lo < hi => Ok((*lo, *hi)),
+        _ => Err(format!("expected LO,HI with LO < HI, got '{s}'")),
+    }
+}
+
+/// A colour ramp by name.
+pub fn parse_ramp(s: &str) -> Result<noiselab::recipes::Ramp, String> {
+    use noiselab::recipes::Ramp;
+    match s.trim() {
+        "grey" | "gray" => Ok(Ramp::GREY),
+        "marble" => Ok(Ramp::MARBLE),
+        "wood" => Ok(Ramp::WOOD),
+        "sky" => Ok(Ramp::SKY),
+        "flame" => Ok(Ramp::FLAME),
+        _ => Err(format!("--ramp must be one of grey, marble, wood, sky, flame, got {s}")),
+    }
+}
+
+/// A volume: `depth` slices along z, z spacing equal to the pixel spacing,
+/// as one (z, y, x) `.npy` or numbered slice PNGs. Every file is checked
+/// before any is written, and each appears atomically.
+fn volume(args: &RenderArgs, field: &Field, dims: usize, range: (f64, f64), slice: &[f64], depth: usize, format: Format) -> Result<(), String> {
+    if dims < 3 {
+        return Err(format!("--depth renders volumes of 3D or 4D noise; this is {dims}D (use --dims 3)"));
+    }
+    let (width, height) = args.size;
+    let total = width.checked_mul(height).and_then(|n| n.checked_mul(depth)).filter(|&n| n <= MAX_PIXELS);
+    total.ok_or_else(|| format!("a {width}x{height}x{depth} volume has more than {MAX_PIXELS} voxels"))?;
+    let step = 1.0 / args.scale;
+    let mut origin = vec![args.origin.0, args.origin.1];
+    origin.extend(slice.iter().copied());
+    origin.resize(dims, 0.0);
+    let mut steps = vec![step, step, step];
+    steps.resize(dims, 0.0);
+    let mut size = vec![width, height, depth];
+    size.resize(dims, 1);
+    let mut values = vec![0f32; width * height * depth];
+    let targets: Vec<std::path::PathBuf> = match format {
+        Format::Npy => vec![args.output.clone()],
+        Format::Png => {
+            let stem = args.output.file_stem().and_then(|s| s.to_str()).unwrap_or("slice");
+            (0..depth).map(|k| args.output.with_file_name(format!("{stem}-{k:03}.png"))).collect()
+        }
+        _ => return Err("--depth writes a (z, y, x) .npy or numbered .png slices".into()),
+    };
+    let pending = targets.iter().map(|t| crate::output::Pending::create(t, args.force)).collect::<Result<Vec<_>, _>>()?;
+    field.fill_grid(&origin, &steps, &size, &mut values).map_err(|e| e.to_string())?;
+    if format == Format::Npy {
+        let file = pending.into_iter().next().expect("one target");
+        return file.finish(|w| {
+            w.write_all(&crate::output::npy_header(&[depth, height, width]))?;
+            let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+            w.write_all(&bytes)
+        });
+    }
+    for (file, layer) in pending.into_iter().zip(values.chunks(width * height)) {
+        let image = Image { width, height, values: layer, range };
+        file.finish(|w| Format::Png.write(w, &image, args.bits))?;
+    }
+    Ok(())
 }
 
 /// A large window, rendered and written band by band: memory stays about

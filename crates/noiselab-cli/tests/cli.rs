@@ -482,3 +482,44 @@ fn streamed_renders_equal_in_memory_ones() {
     reader.next_frame(&mut buf).unwrap();
     assert_eq!((reader.info().width, reader.info().height), (2048, 2049));
 }
+
+#[test]
+fn ramps_and_ranges_map_values() {
+    let dir = tempfile::tempdir().unwrap();
+    let png_path = dir.path().join("ramp.png");
+    noiselab().args(["render", "simplex", "--dims", "2", "--ramp", "flame", "--range", "-0.8,0.8", "--size", "20x10", "-o"]).arg(&png_path).assert().success();
+    let reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
+    assert_eq!(reader.info().color_type, png::ColorType::Rgb);
+    // --range changes the grey mapping, not the values.
+    let (a, b) = (dir.path().join("a.png"), dir.path().join("b.png"));
+    noiselab().args(["render", "value", "--size", "16x16", "-o"]).arg(&a).assert().success();
+    noiselab().args(["render", "value", "--size", "16x16", "--range", "-0.5,0.5", "-o"]).arg(&b).assert().success();
+    assert_ne!(fs::read(&a).unwrap(), fs::read(&b).unwrap());
+    let bad = dir.path().join("bad.npy");
+    assert_one_line_error(&noiselab().args(["render", "value", "--ramp", "wood", "-o"]).arg(&bad).output().unwrap(), "--ramp");
+    assert_one_line_error(&noiselab().args(["render", "value", "--range", "2,1", "-o"]).arg(&bad).output().unwrap(), "--range");
+}
+
+#[test]
+fn volumes_render_as_npy_and_numbered_slices() {
+    let dir = tempfile::tempdir().unwrap();
+    let npy = dir.path().join("vol.npy");
+    noiselab().args(["render", "improved", "--depth", "5", "--size", "12x8", "--scale", "4", "-o"]).arg(&npy).assert().success();
+    let bytes = fs::read(&npy).unwrap();
+    assert!(String::from_utf8_lossy(&bytes[..80]).contains("(5, 8, 12)"));
+    let v = npy_values(&npy);
+    // Voxel (x, y, z) = noise(x/4, y/4, z/4), z slowest.
+    let n = noiselab::Improved::new(0);
+    for (x, y, z) in [(0, 0, 0), (11, 7, 4), (3, 5, 2)] {
+        let want = noiselab::Noise::get_f32(&n, [x as f32 / 4.0, y as f32 / 4.0, z as f32 / 4.0]);
+        assert_eq!(v[z * 96 + y * 12 + x], want, "({x}, {y}, {z})");
+    }
+    let png_path = dir.path().join("slice.png");
+    noiselab().args(["render", "improved", "--depth", "3", "--size", "12x8", "-o"]).arg(&png_path).assert().success();
+    for k in 0..3 {
+        assert!(dir.path().join(format!("slice-{k:03}.png")).exists());
+    }
+    // Nothing is overwritten without --force, and nothing half-written.
+    assert_one_line_error(&noiselab().args(["render", "improved", "--depth", "3", "--size", "12x8", "-o"]).arg(&png_path).output().unwrap(), "exists");
+    assert_one_line_error(&noiselab().args(["render", "value", "--dims", "2", "--depth", "3", "-o"]).arg(dir.path().join("x.npy")).output().unwrap(), "--depth");
+}
