@@ -156,6 +156,10 @@ pub struct SampleArgs {
     /// Arithmetic precision.
     #[arg(long, value_enum, default_value_t = Precision::F64)]
     pub precision: Precision,
+    /// Recipes: the 3D noise kind they are made of (default improved). A recipe samples lines of
+    /// `u v t` (image coordinates in [0, 1] and time) and prints its scalar field.
+    #[arg(long)]
+    pub base: Option<String>,
 }
 
 /// Arguments of `noiselab render`.

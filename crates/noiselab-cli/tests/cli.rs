@@ -523,3 +523,17 @@ fn volumes_render_as_npy_and_numbered_slices() {
     assert_one_line_error(&noiselab().args(["render", "improved", "--depth", "3", "--size", "12x8", "-o"]).arg(&png_path).output().unwrap(), "exists");
     assert_one_line_error(&noiselab().args(["render", "value", "--dims", "2", "--depth", "3", "-o"]).arg(dir.path().join("x.npy")).output().unwrap(), "--depth");
 }
+
+#[test]
+fn sample_covers_recipes() {
+    let out = noiselab().args(["sample", "marble"]).write_stdin("0.1 0.2 0.3\n").output().unwrap();
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    let v: f64 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
+    // marble's frame: p = (3u, 3v, t) over improved noise.
+    assert_eq!(v, noiselab::recipes::marble(&noiselab::Improved::new(0), [0.1 * 3.0, 0.2 * 3.0, 0.3]));
+    let out = noiselab().args(["sample", "hypertexture", "--base", "value"]).write_stdin("0.5,0.5,0\n0.01,0.01,0\n").output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    let values: Vec<f64> = text.lines().map(|l| l.parse().unwrap()).collect();
+    assert!(values[0] > 0.9 && values[1] < 0.1, "{values:?}");
+    assert_one_line_error(&noiselab().args(["sample", "marble"]).write_stdin("0.5 0.5\n").output().unwrap(), "line 1");
+}
