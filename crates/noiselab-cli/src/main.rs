@@ -246,8 +246,20 @@ pub struct AnalyzeArgs {
     pub plots: Option<std::path::PathBuf>,
 }
 
+/// The command line with the registries' contents in the help of the
+/// commands that take a noise, so `--help`, completions and the man page
+/// list exactly what `list` lists.
+fn command() -> clap::Command {
+    use clap::CommandFactory;
+    let kinds: Vec<String> = registry::KINDS.iter().map(|k| format!("  {:<12} {}", k.name, k.summary)).collect();
+    let recipes: Vec<String> = recipes::RECIPES.iter().map(|r| format!("  {:<12} {}", r.name, r.summary)).collect();
+    let text = format!("Kinds:\n{}\n\nRecipes:\n{}\n\nSee `noiselab list` for dimensions and variants.", kinds.join("\n"), recipes.join("\n"));
+    Cli::command().mut_subcommand("render", |c| c.after_help(text.clone())).mut_subcommand("sample", |c| c.after_help(text.clone()))
+}
+
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    use clap::FromArgMatches;
+    let cli = match command().try_get_matches().and_then(|m| Cli::from_arg_matches(&m)) {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;
@@ -274,13 +286,11 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Gallery(args) => gallery::run(&args),
         Command::Completions { shell } => {
-            use clap::CommandFactory;
-            clap_complete::generate(shell, &mut Cli::command(), "noiselab", &mut std::io::stdout());
+            clap_complete::generate(shell, &mut command(), "noiselab", &mut std::io::stdout());
             Ok(())
         }
         Command::Man => {
-            use clap::CommandFactory;
-            clap_mangen::Man::new(Cli::command()).render(&mut std::io::stdout()).map_err(|e| format!("cannot write the man page: {e}"))
+            clap_mangen::Man::new(command()).render(&mut std::io::stdout()).map_err(|e| format!("cannot write the man page: {e}"))
         }
         Command::List => {
             list();
