@@ -537,3 +537,28 @@ fn sample_covers_recipes() {
     assert!(values[0] > 0.9 && values[1] < 0.1, "{values:?}");
     assert_one_line_error(&noiselab().args(["sample", "marble"]).write_stdin("0.5 0.5\n").output().unwrap(), "line 1");
 }
+
+/// Peak resident memory of one run of the binary (Linux: wait4's rusage).
+#[cfg(target_os = "linux")]
+fn peak_rss_kb(args: &[&str]) -> i64 {
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("noiselab")).args(args).spawn().unwrap();
+    let mut status = 0;
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: waits for our own child; `usage` is a valid rusage to fill.
+    let pid = unsafe { libc::wait4(child.id() as libc::pid_t, &mut status, 0, &mut usage) };
+    assert_eq!(pid, child.id() as libc::pid_t);
+    assert_eq!(status, 0, "render failed");
+    usage.ru_maxrss
+}
+
+#[test]
+#[cfg(target_os = "linux")]
+fn large_renders_stream_in_bounded_memory() {
+    // 8192×4096 f32 values alone are 128 MiB; streamed, the whole process
+    // stays far below that.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.png");
+    let peak = peak_rss_kb(&["render", "value", "--dims", "2", "--size", "8192x4096", "--bits", "16", "-o", out.to_str().unwrap()]);
+    eprintln!("8192x4096 16-bit PNG: peak RSS {} MiB", peak / 1024);
+    assert!(peak < 64 * 1024, "peak RSS {peak} KiB");
+}
