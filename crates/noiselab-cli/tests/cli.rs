@@ -540,6 +540,7 @@ fn sample_covers_recipes() {
 
 /// Peak resident memory of one run of the binary (Linux: wait4's rusage).
 #[cfg(target_os = "linux")]
+#[allow(clippy::zombie_processes)] // reaped by wait4, which also reports its rusage
 fn peak_rss_kb(args: &[&str]) -> i64 {
     let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("noiselab")).args(args).spawn().unwrap();
     let mut status = 0;
