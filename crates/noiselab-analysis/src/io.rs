@@ -202,7 +202,7 @@ fn decode_raw(path: &Path, bytes: &[u8], size: Option<(usize, usize)>) -> Result
         None => {
             let count = bytes.len() / 4;
             let side = count.isqrt();
-            if bytes.len() % 4 != 0 || side * side != count {
+            if !bytes.len().is_multiple_of(4) || side * side != count {
                 return Err(ReadError::RawNotSquare { path: path.to_path_buf(), bytes: bytes.len() });
             }
             (side, side)

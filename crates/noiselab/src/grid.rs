@@ -1,13 +1,20 @@
-//! Batch evaluation: regular grids and point lists, eight lanes at a time.
+//! Batch evaluation: regular grids and point lists, many lanes at a time.
 //!
 //! The drivers here are the only place that knows about instruction sets.
-//! Each is compiled several times with `#[target_feature]` (AVX-512, AVX2,
-//! and the baseline) and the best one the CPU supports is picked at run time
-//! (with the `std` feature), so a crate built without `target-cpu=native`
-//! still uses wide vectors. Every level runs the same IEEE operations, so
-//! every level gives the same bits as the scalar `f32` API.
+//! Each is compiled several times with `#[target_feature]` (AVX-512 with
+//! sixteen lanes, AVX2 and the baseline with eight) and the best one the CPU
+//! supports is picked at run time (with the `std` feature), so a crate built
+//! without `target-cpu=native` still uses wide vectors. Every level runs the
+//! same IEEE operations, so every level gives the same bits as the scalar
+//! `f32` API.
+//!
+//! A grid reaches a noise as a [`Span`]: per-axis coordinates ([`Axes`]) and
+//! a run of flat indices. A noise may fill it any way it likes as long as
+//! each value is what [`Noise::get_f32`] gives at that point
+//! ([`Accuracy::Exact`]); lattice kinds hash once per cell instead of once
+//! per point (`kinds::lattice`), fractals fill octave by octave.
 
-use crate::lanes::{F32x8, Lanes};
+use crate::lanes::{BatchLanes, F32x8};
 use crate::noise::Noise;
 use alloc::vec::Vec;
 use core::fmt;
@@ -93,14 +100,181 @@ impl<const D: usize> Grid<D> {
     }
 }
 
+/// How closely a grid fill must follow the scalar API.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Accuracy {
+    /// Every value equals [`Noise::get_f32`] at [`Grid::point`] bit for bit.
+    #[default]
+    Exact,
+    /// Lattice kinds (classic, improved, value, modified) and fractals of
+    /// them evaluate each grid row as a polynomial per lattice cell: within
+    /// 1e-6 of [`Accuracy::Exact`] (absolute, tested), and faster. Other
+    /// kinds fill exactly.
+    Fast,
+}
+
+/// The coordinates of a grid, axis by axis, rounded to `f32`: exactly the
+/// coordinates the batch evaluates (point `(i₀, i₁, …)` is
+/// `(axes[0][i₀], axes[1][i₁], …)`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axes<const D: usize> {
+    coords: [Vec<f32>; D],
+}
+
+impl<const D: usize> Axes<D> {
+    /// The axes of `grid`.
+    pub fn of(grid: &Grid<D>) -> Self {
+        Axes { coords: core::array::from_fn(|d| (0..grid.size[d]).map(|i| grid.coord(d, i) as f32).collect()) }
+    }
+
+    /// Axes given coordinate by coordinate.
+    pub fn new(coords: [Vec<f32>; D]) -> Self {
+        Axes { coords }
+    }
+
+    /// The coordinates along `axis`.
+    #[inline(always)]
+    pub fn axis(&self, axis: usize) -> &[f32] {
+        &self.coords[axis]
+    }
+
+    /// Points along `axis`.
+    #[inline(always)]
+    pub fn size(&self, axis: usize) -> usize {
+        self.coords[axis].len()
+    }
+
+    /// Every coordinate multiplied by `factor` in `f32` (`c * factor` per
+    /// coordinate, as a point evaluation of `p * factor` rounds it).
+    pub fn scaled(&self, factor: f32) -> Self {
+        Axes { coords: core::array::from_fn(|d| self.coords[d].iter().map(|&c| c * factor).collect()) }
+    }
+
+    /// The indices along axes 1.. of row `row` (axis 0 varies within a row).
+    #[inline(always)]
+    pub fn row_indices(&self, mut row: usize) -> [usize; D] {
+        let mut idx = [0usize; D];
+        for d in 1..D {
+            let n = self.coords[d].len();
+            idx[d] = row % n;
+            row /= n;
+        }
+        idx
+    }
+}
+
+/// A run of a grid's points, in flat order (axis 0 fastest), for a noise to
+/// fill: the unit of work of the batch drivers.
+#[derive(Clone, Copy, Debug)]
+pub struct Span<'a, const D: usize> {
+    /// The grid's coordinates.
+    pub axes: &'a Axes<D>,
+    /// Flat index of the first point.
+    pub start: usize,
+    /// How closely values must follow the scalar API.
+    pub accuracy: Accuracy,
+}
+
+impl<const D: usize> Span<'_, D> {
+    /// The (partial) grid rows that `len` points from the span's start
+    /// cover, in order.
+    #[inline(always)]
+    pub fn rows(&self, len: usize) -> RowIter {
+        RowIter { nx: self.axes.size(0), index: self.start, end: self.start + len, start: self.start }
+    }
+}
+
+/// A piece of one grid row: [`Span::rows`]'s items.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RowPiece {
+    /// The row's index (over axes 1.., see [`Axes::row_indices`]).
+    pub row: usize,
+    /// The first column.
+    pub first: usize,
+    /// Where the piece starts in the span's output.
+    pub offset: usize,
+    /// Number of columns.
+    pub len: usize,
+}
+
+/// Iterator over the row pieces of a span.
+#[derive(Clone, Debug)]
+pub struct RowIter {
+    nx: usize,
+    index: usize,
+    end: usize,
+    start: usize,
+}
+
+impl Iterator for RowIter {
+    type Item = RowPiece;
+    #[inline(always)]
+    fn next(&mut self) -> Option<RowPiece> {
+        if self.index >= self.end || self.nx == 0 {
+            return None;
+        }
+        let first = self.index % self.nx;
+        let len = (self.nx - first).min(self.end - self.index);
+        let piece = RowPiece { row: self.index / self.nx, first, offset: self.index - self.start, len };
+        self.index += len;
+        Some(piece)
+    }
+}
+
+/// The default way to fill a span: evaluate [`Noise::sample`] on `B`'s
+/// lanes, chunk by chunk along each row.
+#[inline(always)]
+pub fn fill_pointwise<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+    let w = B::WIDTH;
+    let xs = span.axes.axis(0);
+    for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
+        let idx = span.axes.row_indices(row);
+        let mut p = [B::splat(0.0); D];
+        for d in 1..D {
+            p[d] = B::splat(span.axes.axis(d)[idx[d]]);
+        }
+        let mut k = 0;
+        while k < n {
+            let count = (n - k).min(w);
+            let i = i0 + k;
+            p[0] = if count == w {
+                B::from_slice(&xs[i..i + w])
+            } else {
+                // Pad the tail with the last point; its lanes are discarded.
+                let mut pad = [0f32; 16];
+                for (j, x) in pad.iter_mut().enumerate().take(w) {
+                    *x = xs[i + j.min(count - 1)];
+                }
+                B::from_slice(&pad)
+            };
+            let v = noise.sample(p);
+            store_prefix(v, &mut out[o0 + k..o0 + k + count]);
+            k += count;
+        }
+    }
+}
+
+/// Store the first `out.len()` (≤ WIDTH) lanes of `v`.
+#[inline(always)]
+pub(crate) fn store_prefix<B: BatchLanes>(v: B, out: &mut [f32]) {
+    if out.len() == B::WIDTH {
+        v.store(out);
+    } else {
+        let mut tmp = [0f32; 16];
+        v.store(&mut tmp);
+        out.copy_from_slice(&tmp[..out.len()]);
+    }
+}
+
 /// An instruction-set level of the batch drivers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SimdLevel {
-    /// The compilation target's baseline (SSE2 on x86-64, NEON on aarch64).
+    /// The compilation target's baseline (SSE2 on x86-64, NEON on aarch64),
+    /// eight lanes.
     Baseline,
-    /// AVX2 (x86-64). Never FMA: results stay bit-identical.
+    /// AVX2 (x86-64), eight lanes. Never FMA: results stay bit-identical.
     Avx2,
-    /// AVX-512F (x86-64).
+    /// AVX-512 F, BW, DQ and VL (x86-64), sixteen lanes.
     Avx512,
 }
 
@@ -111,10 +285,11 @@ impl SimdLevel {
         let mut v = Vec::from([SimdLevel::Baseline]);
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         {
-            if std::arch::is_x86_feature_detected!("avx2") {
+            use std::arch::is_x86_feature_detected as has;
+            if has!("avx2") {
                 v.push(SimdLevel::Avx2);
             }
-            if std::arch::is_x86_feature_detected!("avx512f") {
+            if has!("avx512f") && has!("avx512bw") && has!("avx512dq") && has!("avx512vl") {
                 v.push(SimdLevel::Avx512);
             }
         }
@@ -137,25 +312,28 @@ fn best_level() -> SimdLevel {
     SimdLevel::Baseline
 }
 
-/// Points per parallel task: large enough to amortise scheduling.
+/// Fewest points per parallel task: enough to amortise scheduling.
 #[cfg(feature = "parallel")]
-const PAR_CHUNK: usize = 1 << 14;
+const PAR_CHUNK: usize = 1 << 15;
 
 pub(crate) fn fill_grid<N: Noise<D>, const D: usize>(
     noise: &N,
     grid: &Grid<D>,
     out: &mut [f32],
+    accuracy: Accuracy,
 ) -> Result<(), GridError> {
-    fill_grid_at(best_level(), noise, grid, out)
+    fill_grid_at(best_level(), noise, grid, out, accuracy)
 }
 
-/// [`Noise::fill_grid`] at a chosen instruction-set level (for tests and
-/// benchmarks; a level the CPU lacks falls back to the baseline).
+/// [`Noise::fill_grid`] (or, with [`Accuracy::Fast`], [`Noise::fill_grid_fast`])
+/// at a chosen instruction-set level (for tests and benchmarks; a level the
+/// CPU lacks falls back to the best it has).
 pub fn fill_grid_at<N: Noise<D>, const D: usize>(
     level: SimdLevel,
     noise: &N,
     grid: &Grid<D>,
     out: &mut [f32],
+    accuracy: Accuracy,
 ) -> Result<(), GridError> {
     let expected = grid.checked_len().ok_or(GridError::TooLarge)?;
     if out.len() != expected {
@@ -164,18 +342,41 @@ pub fn fill_grid_at<N: Noise<D>, const D: usize>(
     if expected == 0 {
         return Ok(());
     }
+    let axes = Axes::of(grid);
+    fill_axes_at(level, noise, &axes, out, accuracy);
+    Ok(())
+}
+
+/// Fill `out` (flat, axis 0 fastest; its length must be the product of the
+/// axes' sizes) at the points of `axes`, in parallel under the `parallel`
+/// feature. Chunks follow rows, and no value depends on how the work is cut.
+pub(crate) fn fill_axes_at<N: Noise<D>, const D: usize>(
+    level: SimdLevel,
+    noise: &N,
+    axes: &Axes<D>,
+    out: &mut [f32],
+    accuracy: Accuracy,
+) {
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        if expected >= 4 * PAR_CHUNK {
-            out.par_chunks_mut(PAR_CHUNK)
-                .enumerate()
-                .for_each(|(k, chunk)| dispatch_grid(level, noise, grid, k * PAR_CHUNK, chunk));
-            return Ok(());
+        if out.len() >= 4 * PAR_CHUNK {
+            // About four tasks per thread, whole rows where rows are short.
+            let nx = axes.size(0).max(1);
+            let per_task = (out.len() / (4 * rayon::current_num_threads())).max(PAR_CHUNK);
+            let chunk = if nx <= per_task { per_task / nx * nx } else { per_task };
+            out.par_chunks_mut(chunk).enumerate().for_each(|(k, part)| {
+                dispatch_span(level, noise, Span { axes, start: k * chunk, accuracy }, part)
+            });
+            return;
         }
     }
-    dispatch_grid(level, noise, grid, 0, out);
-    Ok(())
+    dispatch_span(level, noise, Span { axes, start: 0, accuracy }, out)
+}
+
+/// One span at the best level (the bridge for noises chosen at run time).
+pub(crate) fn fill_span_best<N: Noise<D>, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+    dispatch_span(best_level(), noise, span, out)
 }
 
 pub(crate) fn fill_points<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
@@ -203,83 +404,54 @@ pub fn fill_points_at<N: Noise<D>, const D: usize>(
     dispatch_points(level, noise, points, out)
 }
 
+/// Runs `$body::<N, LANES, D>(noise, args…)` compiled for the best level
+/// available up to `level`, with that level's lane type.
 macro_rules! dispatcher {
     ($name:ident, $body:ident, ($($arg:ident : $ty:ty),*)) => {
         fn $name<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, $($arg: $ty),*) {
             #[cfg(all(feature = "std", target_arch = "x86_64"))]
             {
-                #[target_feature(enable = "avx512f")]
+                #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl")]
                 unsafe fn avx512<N: Noise<D>, const D: usize>(noise: &N, $($arg: $ty),*) {
-                    $body(noise, $($arg),*)
+                    $body::<N, crate::lanes::avx512::X16, D>(noise, $($arg),*)
                 }
                 #[target_feature(enable = "avx2")]
                 unsafe fn avx2<N: Noise<D>, const D: usize>(noise: &N, $($arg: $ty),*) {
-                    $body(noise, $($arg),*)
+                    $body::<N, crate::lanes::avx2::X8, D>(noise, $($arg),*)
                 }
-                let best = best_level();
-                // SAFETY: each clone runs only when the CPU reports its feature.
-                match level.min(best) {
+                // SAFETY: each clone runs only when the CPU reports its features.
+                match level.min(best_level()) {
                     SimdLevel::Avx512 => return unsafe { avx512(noise, $($arg),*) },
                     SimdLevel::Avx2 => return unsafe { avx2(noise, $($arg),*) },
                     SimdLevel::Baseline => {}
                 }
             }
             let _ = level;
-            $body(noise, $($arg),*)
+            $body::<N, F32x8, D>(noise, $($arg),*)
         }
     };
 }
 
-dispatcher!(dispatch_grid, grid_span, (grid: &Grid<D>, start: usize, out: &mut [f32]));
+dispatcher!(dispatch_span, span_body, (span: Span<'_, D>, out: &mut [f32]));
 dispatcher!(dispatch_points, points_span, (points: &[[f32; D]], out: &mut [f32]));
 
-/// Fill `out` with grid points `start..start + out.len()`, row by row.
 #[inline(always)]
-fn grid_span<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>, start: usize, out: &mut [f32]) {
-    let nx = grid.size[0];
-    let mut index = start;
-    let end = start + out.len();
-    while index < end {
-        let i0 = index % nx;
-        let row_end = (index - i0 + nx).min(end);
-        // Coordinates of axes 1.. are constant along the row.
-        let mut rest = index / nx;
-        let mut p = [F32x8::splat(0.0); D];
-        for (d, pd) in p.iter_mut().enumerate().skip(1) {
-            let n = grid.size[d];
-            *pd = F32x8::splat(grid.coord(d, rest % n) as f32);
-            rest /= n;
-        }
-        let mut i = i0;
-        while i < i0 + (row_end - index) {
-            let count = (i0 + (row_end - index) - i).min(8);
-            let mut xs = [0f32; 8];
-            for (k, x) in xs.iter_mut().enumerate() {
-                // Pad the tail with the last point; its lanes are discarded.
-                *x = grid.coord(0, i + k.min(count - 1)) as f32;
-            }
-            p[0] = F32x8(xs);
-            let v = noise.sample(p);
-            let o = index - start + (i - i0);
-            out[o..o + count].copy_from_slice(&v.0[..count]);
-            i += count;
-        }
-        index = row_end;
-    }
+fn span_body<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+    noise.fill_span::<B>(span, out)
 }
 
 #[inline(always)]
-fn points_span<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
-    for (pc, oc) in points.chunks(8).zip(out.chunks_mut(8)) {
-        let mut p = [F32x8::splat(0.0); D];
+fn points_span<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
+    let w = B::WIDTH;
+    for (pc, oc) in points.chunks(w).zip(out.chunks_mut(w)) {
+        let mut p = [B::splat(0.0); D];
         for (d, pd) in p.iter_mut().enumerate() {
-            let mut xs = [0f32; 8];
-            for (k, x) in xs.iter_mut().enumerate() {
+            let mut xs = [0f32; 16];
+            for (k, x) in xs.iter_mut().enumerate().take(w) {
                 *x = pc[k.min(pc.len() - 1)][d];
             }
-            *pd = F32x8(xs);
+            *pd = B::from_slice(&xs);
         }
-        let v = noise.sample(p);
-        oc.copy_from_slice(&v.0[..oc.len()]);
+        store_prefix(noise.sample(p), oc);
     }
 }

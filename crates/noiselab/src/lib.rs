@@ -63,7 +63,7 @@ pub mod recipes;
 mod noise;
 
 pub use compose::{ComposeError, Fractal, FractalMode, Looped, Octave, Warp};
-pub use grid::{Grid, GridError, SimdLevel};
+pub use grid::{Accuracy, Axes, Grid, GridError, SimdLevel, Span};
 pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;
 pub use kinds::fast::Fast;
@@ -74,7 +74,7 @@ pub use kinds::simplex_n::{SimplexCost, SimplexN};
 pub use kinds::sparse::{Kernel, KernelError, Normalisation, Profile, Sparse, SparseError, SparseTurbulence, SplatError, Values};
 pub use kinds::value::Value;
 pub use kinds::worley::{CellOutput, Metric, Nearest, Worley, WorleyError};
-pub use noise::{sample_x8, DynNoise, Noise, NoiseGradient};
+pub use noise::{sample_x16, sample_x8, DynNoise, Noise, NoiseGradient};
 
 /// The README's code blocks, compiled and run as doctests.
 #[cfg(doctest)]

@@ -1,7 +1,7 @@
 //! The one trait every noise implements, and its derivative companion.
 
-use crate::grid::{self, Grid, GridError};
-use crate::lanes::{F32x8, Lanes};
+use crate::grid::{self, Accuracy, Grid, GridError, Span};
+use crate::lanes::{BatchLanes, F32x16, F32x8, Lanes};
 
 /// A coherent-noise field over `D`-dimensional space.
 ///
@@ -13,8 +13,8 @@ use crate::lanes::{F32x8, Lanes};
 /// * [`Noise::get`]: one point in `f64` (the reference-exact path);
 /// * [`Noise::get_f32`]: one point in `f32`;
 /// * [`Noise::fill_grid`] and [`Noise::fill_points`]: batches in `f32`,
-///   evaluated eight points at a time with [`F32x8`], equal to `get_f32`
-///   bit for bit.
+///   evaluated sixteen ([`F32x16`], AVX-512) or eight ([`F32x8`]) points at
+///   a time, equal to `get_f32` bit for bit.
 pub trait Noise<const D: usize>: Send + Sync {
     /// The field at `p`, one point per lane.
     fn sample<L: Lanes>(&self, p: [L; D]) -> L;
@@ -39,7 +39,17 @@ pub trait Noise<const D: usize>: Send + Sync {
     where
         Self: Sized,
     {
-        grid::fill_grid(self, grid, out)
+        grid::fill_grid(self, grid, out, Accuracy::Exact)
+    }
+
+    /// [`Noise::fill_grid`], trading the last bits for speed where a kind
+    /// can ([`Accuracy::Fast`]: lattice kinds and their fractals, within
+    /// 1e-6 of the exact fill; other kinds fill exactly).
+    fn fill_grid_fast(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError>
+    where
+        Self: Sized,
+    {
+        grid::fill_grid(self, grid, out, Accuracy::Fast)
     }
 
     /// Fill `out[i]` with the field at `points[i]`.
@@ -50,6 +60,20 @@ pub trait Noise<const D: usize>: Send + Sync {
         Self: Sized,
     {
         grid::fill_points(self, points, out)
+    }
+
+    /// Fill `out` with the points `span.start..span.start + out.len()` of
+    /// a grid, on lanes `B`. The batch drivers call this inside their
+    /// instruction-set clones; kinds override it to exploit a grid's
+    /// structure (hash once per cell, not per point). Every override must
+    /// give [`Noise::get_f32`]'s bits under [`Accuracy::Exact`].
+    #[doc(hidden)]
+    #[inline(always)]
+    fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32])
+    where
+        Self: Sized,
+    {
+        grid::fill_pointwise::<Self, B, D>(self, span, out)
     }
 }
 
@@ -73,6 +97,10 @@ impl<N: Noise<D>, const D: usize> Noise<D> for &N {
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
         (**self).sample(p)
     }
+    #[inline(always)]
+    fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
+        (**self).fill_span::<B>(span, out)
+    }
 }
 
 impl<N: NoiseGradient<D>, const D: usize> NoiseGradient<D> for &N {
@@ -95,6 +123,12 @@ pub trait DynNoise<const D: usize>: Send + Sync {
     fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]);
     /// Eight lanes at once ([`Noise::sample`] on [`F32x8`]).
     fn sample_x8(&self, p: [F32x8; D]) -> F32x8;
+    /// Sixteen lanes at once ([`Noise::sample`] on [`F32x16`]).
+    fn sample_x16(&self, p: [F32x16; D]) -> F32x16;
+    /// A grid span, through the concrete noise's own batch path (at the
+    /// best instruction-set level).
+    #[doc(hidden)]
+    fn fill_span_dyn(&self, span: Span<'_, D>, out: &mut [f32]);
 }
 
 /// A noise chosen at run time is a [`Noise`] again (one virtual call per
@@ -104,6 +138,12 @@ impl<const D: usize> Noise<D> for alloc::boxed::Box<dyn DynNoise<D>> {
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
         L::sample_dyn(&**self, p)
+    }
+    #[inline(always)]
+    fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
+        // The boxed noise's own path (`**self`: not the box's blanket
+        // DynNoise impl, which would come back here).
+        (**self).fill_span_dyn(span, out)
     }
 }
 
@@ -123,10 +163,22 @@ impl<N: Noise<D>, const D: usize> DynNoise<D> for N {
     fn sample_x8(&self, p: [F32x8; D]) -> F32x8 {
         Noise::sample(self, p)
     }
+    fn sample_x16(&self, p: [F32x16; D]) -> F32x16 {
+        Noise::sample(self, p)
+    }
+    fn fill_span_dyn(&self, span: Span<'_, D>, out: &mut [f32]) {
+        grid::fill_span_best(self, span, out)
+    }
 }
 
 /// Evaluate eight points at once (a building block for custom batch loops).
 #[inline]
 pub fn sample_x8<N: Noise<D>, const D: usize>(noise: &N, p: [F32x8; D]) -> F32x8 {
+    noise.sample(p)
+}
+
+/// Evaluate sixteen points at once (fastest inside code compiled for AVX-512).
+#[inline]
+pub fn sample_x16<N: Noise<D>, const D: usize>(noise: &N, p: [F32x16; D]) -> F32x16 {
     noise.sample(p)
 }

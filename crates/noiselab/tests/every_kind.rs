@@ -3,8 +3,9 @@
 //! documented range, and the special-input contract (NaN, ±∞, huge values).
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
+use noiselab::lanes::{F32x16, F32x8};
 use noiselab::hash::SplitMix64;
-use noiselab::{Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
+use noiselab::{Accuracy, Axes, Span, Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -108,21 +109,49 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
         for (i, (&s, &b)) in scalar.iter().zip(&out).enumerate() {
             assert!(same(s, b), "{name} {D}D {level:?}: point {:?}: scalar {s:e} batch {b:e}", pts[i]);
         }
-        // A grid straddling negative coordinates and cell borders, with a
-        // row length that is not a multiple of the lane width.
-        let mut size = [1usize; D];
-        size[0] = 37;
-        if D > 1 {
-            size[1] = 5;
-        }
-        let grid = Grid::new([-2.125; D], [0.0625; D], size);
-        let mut out = vec![0f32; grid.len()];
-        fill_grid_at(level, noise, &grid, &mut out).unwrap();
-        for (i, &b) in out.iter().enumerate() {
-            let s = noise.get_f32(grid.point(i));
-            assert!(same(s, b), "{name} {D}D {level:?}: grid point {:?}: scalar {s:e} batch {b:e}", grid.point(i));
+        for grid in probe_grids::<D>() {
+            let mut out = vec![0f32; grid.len()];
+            fill_grid_at(level, noise, &grid, &mut out, Accuracy::Exact).unwrap();
+            for (i, &b) in out.iter().enumerate() {
+                let s = noise.get_f32(grid.point(i));
+                assert!(same(s, b), "{name} {D}D {level:?}: grid {grid:?} point {:?}: scalar {s:e} batch {b:e}", grid.point(i));
+            }
         }
     }
+    // Spans that start and end mid-row, as parallel chunks do, on both lane widths.
+    let grid = Grid::new([-1.3; D], [0.03125; D], core::array::from_fn(|d| if d == 0 { 75 } else { 3 }));
+    let axes = Axes::of(&grid);
+    for (start, len) in [(0, grid.len()), (7, 100), (74, 2), (76, 150), (grid.len() - 9, 9)] {
+        if start >= grid.len() {
+            continue;
+        }
+        let len = len.min(grid.len() - start);
+        let mut a = vec![0f32; len];
+        let mut b = vec![0f32; len];
+        noise.fill_span::<F32x8>(Span { axes: &axes, start, accuracy: Accuracy::Exact }, &mut a);
+        noise.fill_span::<F32x16>(Span { axes: &axes, start, accuracy: Accuracy::Exact }, &mut b);
+        for k in 0..len {
+            let s = noise.get_f32(grid.point(start + k));
+            assert!(same(s, a[k]) && same(s, b[k]), "{name} {D}D span {start}+{len}, point {}: scalar {s:e}, x8 {:e}, x16 {:e}", start + k, a[k], b[k]);
+        }
+    }
+}
+
+/// Grids that exercise the batch drivers' cases: runs of one cell longer and
+/// shorter than the lanes, rows not a multiple of the lane width, negative
+/// and zero steps, cell borders, negative and far coordinates.
+fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
+    let size = |x: usize, rest: usize| core::array::from_fn(|d| if d == 0 { x } else { rest });
+    let rest = if D > 2 { 3 } else { 5 };
+    vec![
+        Grid::new([-2.125; D], [0.0625; D], size(37, rest)),
+        Grid::new([0.0; D], [1.0 / 32.0; D], size(70, rest)),
+        Grid::new([3.3; D], [0.7; D], size(41, rest)),
+        Grid::new([1.0; D], [-0.015625; D], size(130, 2)),
+        Grid::new([0.5; D], [0.0; D], size(19, 2)),
+        Grid::new([-70000.37; D], [0.11; D], size(40, 2)),
+        Grid::new([123456.0; D], [1.0 / 48.0; D], size(100, 2)),
+    ]
 }
 
 #[test]

@@ -4,8 +4,10 @@
 //! The tables are built in Rust exactly as the C `init()` builds them from
 //! glibc's `random()`, so no libc and no table file are needed.
 
-use super::{Period, PeriodError};
-use crate::lanes::{lerp, math::sqrt64, Elem, IntLanes, Lanes};
+use super::lattice::{self, Corner, Lattice};
+use super::{corner_bit, Period, PeriodError, MAX_CORNERS};
+use crate::grid::Span;
+use crate::lanes::{math::sqrt64, BatchLanes, Elem, IntLanes, Lanes};
 use crate::noise::Noise;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
@@ -158,34 +160,6 @@ impl Classic {
         self.seed
     }
 
-    #[inline(always)]
-    fn g<L: Lanes>(t: &([f32; LEN], [f64; LEN]), i: L::Int) -> L {
-        L::gather(L::Elem::pick(&t.0, &t.1), i)
-    }
-
-    #[inline(always)]
-    fn p<L: Lanes>(&self, i: L::Int) -> L::Int {
-        L::Int::gather_i32(&self.tables.p, i)
-    }
-}
-
-/// The C `setup` macro: lower and upper cell (mod 256) and the offsets to
-/// them. Tiled on `axis`, the cells (x's cell is ⌊x + 4096⌋ − 4096) wrap
-/// into the period before the mod 256.
-#[inline(always)]
-fn setup<L: Lanes>(x: L, period: Period, axis: usize) -> (L::Int, L::Int, L, L) {
-    let t = x + L::cst(4096.0);
-    let fl = t.floor();
-    let cell = fl.to_int_wrapping();
-    let (b0, b1) = if period.is_none() {
-        let b0 = cell.and_c(255);
-        (b0, b0.add_c(1).and_c(255))
-    } else {
-        let c = cell.add_c(-4096);
-        (period.wrap(axis, c).and_c(255), period.wrap(axis, c.add_c(1)).and_c(255))
-    };
-    let r0 = t - fl;
-    (b0, b1, r0, r0 - L::cst(1.0))
 }
 
 /// 3t² − 2t³ as `t·t·(3 − 2t)`.
@@ -194,59 +168,118 @@ fn s_curve<L: Lanes>(t: L) -> L {
     t * t * (L::cst(3.0) - L::cst(2.0) * t)
 }
 
-impl Noise<1> for Classic {
+impl Classic {
+    /// The C `setup` macro's table index of a corner, `(cell + bit) & 255`;
+    /// tiled, the cell (x's cell is ⌊x + 4096⌋ − 4096) wraps into the period
+    /// first.
     #[inline(always)]
-    fn sample<L: Lanes>(&self, [x]: [L; 1]) -> L {
-        let (b0, b1, r0, r1) = setup(x, self.period, 0);
-        let g = &self.tables.g1;
-        let u = r0 * Self::g::<L>(g, self.p::<L>(b0));
-        let v = r1 * Self::g::<L>(g, self.p::<L>(b1));
-        lerp(s_curve(r0), u, v)
+    fn index<I: IntLanes>(&self, cell: I, axis: usize, bit: i32) -> I {
+        if self.period.is_none() {
+            cell.add_c(bit).and_c(255)
+        } else {
+            self.period.wrap(axis, cell.add_c(bit - 4096)).and_c(255)
+        }
+    }
+
+    /// Gradient component table `t` at `i`, in the lanes' precision.
+    #[inline(always)]
+    fn g<L: Lanes>(t: &([f32; LEN], [f64; LEN]), i: L::Int) -> L {
+        L::gather(L::Elem::pick(&t.0, &t.1), i)
+    }
+
+    /// The permutation `p[i]`.
+    #[inline(always)]
+    fn p<L: Lanes>(&self, i: L::Int) -> L::Int {
+        L::Int::gather_i32(&self.tables.p, i)
     }
 }
 
-impl Noise<2> for Classic {
+impl<const D: usize> Lattice<D> for Classic {
+    const FLOATS: usize = D;
+    const INTS: usize = 0;
+
+    /// As the C `setup`: `t = x + 4096` is formed first (quantising f32
+    /// positions), the cell is `⌊t⌋` and the position `t − ⌊t⌋`.
     #[inline(always)]
-    fn sample<L: Lanes>(&self, [x, y]: [L; 2]) -> L {
-        let (bx0, bx1, rx0, rx1) = setup(x, self.period, 0);
-        let (by0, by1, ry0, ry1) = setup(y, self.period, 1);
-        let (i, j) = (self.p::<L>(bx0), self.p::<L>(bx1));
-        let [gx, gy] = &self.tables.g2;
-        let at = |b: L::Int, rx: L, ry: L| {
-            let b = self.p::<L>(b);
-            rx * Self::g::<L>(gx, b) + ry * Self::g::<L>(gy, b)
+    fn split<L: Lanes>(&self, x: L) -> (L::Int, L) {
+        let t = x + L::cst(4096.0);
+        let fl = t.floor();
+        (fl.to_int_wrapping(), t - fl)
+    }
+
+    #[inline(always)]
+    fn fade<L: Lanes>(&self, t: L) -> L {
+        s_curve(t)
+    }
+
+    #[inline(always)]
+    fn fade_deriv<L: Lanes>(&self, t: L) -> L {
+        L::cst(6.0) * t * (L::cst(1.0) - t)
+    }
+
+    /// The corners' gradients. 1D: `g1[p[bx]]`; 2D: `g2[p[p[bx] + by]]`;
+    /// 3D: `g3[p[p[bx] + by] + bz]` — the z index is added to the table
+    /// index, not hashed, as in 1985.
+    #[inline(always)]
+    fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
+        let t = &self.tables;
+        let tables: [&([f32; LEN], [f64; LEN]); 3] = match D {
+            1 => [&t.g1, &t.g1, &t.g1],
+            2 => [&t.g2[0], &t.g2[1], &t.g2[1]],
+            _ => [&t.g3[0], &t.g3[1], &t.g3[2]],
         };
-        let sx = s_curve(rx0);
-        let a = lerp(sx, at(i.add(by0), rx0, ry0), at(j.add(by0), rx1, ry0));
-        let b = lerp(sx, at(i.add(by1), rx0, ry1), at(j.add(by1), rx1, ry1));
-        lerp(s_curve(ry0), a, b)
+        let mut out = [Corner::zero(); MAX_CORNERS];
+        for (corner, c) in out.iter_mut().enumerate().take(1 << D) {
+            let mut b = self.p::<L>(self.index(cell[0], 0, corner_bit(corner, 0)));
+            if D > 1 {
+                b = self.p::<L>(b.add(self.index(cell[1], 1, corner_bit(corner, 1))));
+            }
+            if D > 2 {
+                b = b.add(self.index(cell[2], 2, corner_bit(corner, 2)));
+            }
+            for d in 0..D {
+                c.f[d] = Self::g::<L>(tables[d], b);
+            }
+        }
+        out
+    }
+
+    /// `f[0]` keeps axis 0's gradient component; `f[d]` becomes `r_d · g_d`.
+    #[inline(always)]
+    fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L> {
+        let mut b = corner;
+        for d in 1..D {
+            b.f[d] = offset[d] * corner.f[d];
+        }
+        b
+    }
+
+    /// `rx·gx + ry·gy + rz·gz`, summed from x, as the C code.
+    #[inline(always)]
+    fn eval<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+        let mut dot = x * b.f[0];
+        for d in 1..D {
+            dot = dot + b.f[d];
+        }
+        dot
     }
 }
 
-impl Noise<3> for Classic {
-    #[inline(always)]
-    fn sample<L: Lanes>(&self, [x, y, z]: [L; 3]) -> L {
-        let (bx0, bx1, rx0, rx1) = setup(x, self.period, 0);
-        let (by0, by1, ry0, ry1) = setup(y, self.period, 1);
-        let (bz0, bz1, rz0, rz1) = setup(z, self.period, 2);
-        let (i, j) = (self.p::<L>(bx0), self.p::<L>(bx1));
-        let (b00, b10) = (self.p::<L>(i.add(by0)), self.p::<L>(j.add(by0)));
-        let (b01, b11) = (self.p::<L>(i.add(by1)), self.p::<L>(j.add(by1)));
-        let [gx, gy, gz] = &self.tables.g3;
-        // The z index is added to the table index, not hashed (as in 1985).
-        let at = |b: L::Int, rx: L, ry: L, rz: L| {
-            rx * Self::g::<L>(gx, b) + ry * Self::g::<L>(gy, b) + rz * Self::g::<L>(gz, b)
-        };
-        let t = s_curve(rx0);
-        let sy = s_curve(ry0);
-        let plane = |bz: L::Int, rz: L| {
-            let a = lerp(t, at(b00.add(bz), rx0, ry0, rz), at(b10.add(bz), rx1, ry0, rz));
-            let b = lerp(t, at(b01.add(bz), rx0, ry1, rz), at(b11.add(bz), rx1, ry1, rz));
-            lerp(sy, a, b)
-        };
-        lerp(s_curve(rz0), plane(bz0, rz0), plane(bz1, rz1))
-    }
+macro_rules! impl_classic {
+    ($($d:literal),*) => {$(
+        impl Noise<$d> for Classic {
+            #[inline(always)]
+            fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
+                lattice::sample(self, p)
+            }
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                lattice::fill_span::<Self, B, $d>(self, span, out)
+            }
+        }
+    )*};
 }
+impl_classic!(1, 2, 3);
 
 #[cfg(test)]
 mod tests {

@@ -5,9 +5,11 @@
 //! defined as the zero slices of 3D: `n2(x, y) == n3(x, y, 0)` and
 //! `n1(x) == n3(x, 0, 0)` as values (the sign of a zero may differ).
 
-use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, Period, PeriodError, MAX_CORNERS};
+use super::lattice::{self, Corner, Lattice};
+use super::{fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
+use crate::grid::Span;
 use crate::hash::Permutation;
-use crate::lanes::{cell, IntLanes, Lanes};
+use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
 
 /// Which 3D gradient function to use.
@@ -73,108 +75,135 @@ impl Improved {
         self.variant
     }
 
-    /// Perlin's `grad(hash, x, y, z)`: the dot product of the hashed gradient
-    /// with `(x, y, z)`, written as his selects so the rounding is his.
-    #[inline(always)]
-    fn grad3<L: Lanes>(&self, hash: L::Int, x: L, y: L, z: L) -> L {
-        let h = hash.and_c(15);
-        let lt = |k: i32| h.lt(L::Int::splat(k));
-        let is = |k: i32| h.eq(L::Int::splat(k));
-        let (u_is_x, v_is_y) = match self.variant {
-            ImprovedVariant::Current => (lt(8), lt(4)),
-            ImprovedVariant::Original2002 => (lt(8) | is(12) | is(13), lt(4) | is(12) | is(13)),
-        };
-        let u = L::select(u_is_x, x, y);
-        let v_alt = match self.variant {
-            ImprovedVariant::Current => L::select(is(12) | is(14), x, z),
-            ImprovedVariant::Original2002 => z,
-        };
-        let v = L::select(v_is_y, y, v_alt);
-        L::select(h.bit(0), -u, u) + L::select(h.bit(1), -v, v)
-    }
-
     /// Perlin's 4D `grad(hash, x, y, z, w)` as posted (see the type docs).
     #[inline(always)]
     fn grad4<L: Lanes>(hash: L::Int, x: L, y: L, z: L, w: L) -> L {
         let h = hash.and_c(31);
         let hi = h.shr(3);
-        let case = |k: i32| hi.eq(L::Int::splat(k));
+        let (case1, case2) = (hi.eq(L::Int::splat(1)), hi.eq(L::Int::splat(2)));
         // Case 0 and case 3 are both (y, z, w) in the posted code.
-        let a = L::select(case(1), w, L::select(case(2), z, y));
-        let b = L::select(case(1), x, L::select(case(2), w, z));
-        let c = L::select(case(1), y, L::select(case(2), x, w));
+        let a = L::select(case1, w, L::select(case2, z, y));
+        let b = L::select(case1, x, L::select(case2, w, z));
+        let c = L::select(case1, y, L::select(case2, x, w));
         L::select(h.bit(2), a, -a) + L::select(h.bit(1), b, -b) + L::select(h.bit(0), c, -c)
     }
 
-    /// The dot product of corner hash `h` with offset `d` (padded with zeros).
+    /// Perlin's index of a corner on an axis, `(X & 255) + bit`; tiled,
+    /// the corner's cell wraps first.
     #[inline(always)]
-    fn dot<L: Lanes, const D: usize>(&self, h: L::Int, d: [L; D]) -> L {
-        let z = L::cst(0.0);
-        let at = |k: usize| if k < D { d[k] } else { z };
-        if D == 4 {
-            Self::grad4(h, at(0), at(1), at(2), at(3))
+    fn index<I: IntLanes>(&self, cell: I, axis: usize, bit: i32) -> I {
+        if self.period.is_none() {
+            cell.and_c(255).add_c(bit)
         } else {
-            self.grad3(h, at(0), at(1), at(2))
+            self.period.wrap(axis, cell.add_c(bit)).and_c(255)
         }
     }
 
-    /// Per-corner hashes and offsets, shared by value and gradient.
+    /// Perlin's 3D `grad(hash, x, y, z)` picks two distinct axes u and v and
+    /// returns ±u ± v. Per axis: whether it is picked, and whether negated
+    /// (bit 0 negates u, bit 1 negates v).
     #[inline(always)]
-    fn corners<L: Lanes, const D: usize>(
-        &self,
-        p: [L; D],
-    ) -> ([L::Int; MAX_CORNERS], [[L; D]; MAX_CORNERS], [L; D]) {
-        let (cells, f) = cell(p);
-        let c = cells.map(|ci| ci.and_c(255));
-        // Perlin's index of a corner on an axis: (X & 255) + bit, read from
-        // the doubled table; tiled, the corner's cell wraps first.
-        let tiled = !self.period.is_none();
-        let index = |d: usize, bit: i32| {
-            if tiled { self.period.wrap(d, cells[d].add_c(bit)).and_c(255) } else { c[d].add_c(bit) }
+    fn picks<L: Lanes>(&self, hash: L::Int) -> [(L::Mask, L::Mask); 3] {
+        let h = hash.and_c(15);
+        let (below4, below8) = (h.lt(L::Int::splat(4)), h.lt(L::Int::splat(8)));
+        let (is12, is13, is14) = (h.eq(L::Int::splat(12)), h.eq(L::Int::splat(13)), h.eq(L::Int::splat(14)));
+        let (neg_u, neg_v) = (h.bit(0), h.bit(1));
+        let (u_is_x, v_is_y, v_is_x) = match self.variant {
+            ImprovedVariant::Current => (below8, below4, !below4 & (is12 | is14)),
+            ImprovedVariant::Original2002 => {
+                let both = is12 | is13;
+                // v is never x: `both & !both` is the all-false mask.
+                (below8 | both, below4 | both, both & !both)
+            }
         };
-        // 1D and 2D continue Perlin's 3D hash chain with zero coordinates.
+        // An axis picked as u or as v, negated by u's bit or v's.
+        let x = (u_is_x | v_is_x, (u_is_x & neg_u) | (!u_is_x & neg_v));
+        let y = (!u_is_x | v_is_y, (!u_is_x & neg_u) | (u_is_x & neg_v));
+        [x, y, (!(v_is_y | v_is_x), neg_v)]
+    }
+}
+
+/// `a` negated where `neg`, or −0 (the additive identity) where the axis is
+/// not picked: summing these over the axes in any order gives Perlin's
+/// `±u ± v` bit for bit.
+#[inline(always)]
+fn pick<L: Lanes>(a: L, (picked, neg): (L::Mask, L::Mask)) -> L {
+    L::select(picked, L::select(neg, -a, a), L::cst(-0.0))
+}
+
+impl<const D: usize> Lattice<D> for Improved {
+    const FLOATS: usize = if D == 4 { 3 } else { 2 };
+    const INTS: usize = 1;
+
+    #[inline(always)]
+    fn fade<L: Lanes>(&self, t: L) -> L {
+        fade5(t)
+    }
+
+    #[inline(always)]
+    fn fade_deriv<L: Lanes>(&self, t: L) -> L {
+        fade5_deriv(t)
+    }
+
+    /// Perlin's hash chain `p[p[p[X] + Y] + Z]` (and `+ W` in 4D), each
+    /// lookup shared by the corners it leads to; 1D and 2D continue the 3D
+    /// chain with zero coordinates. Tiled, each corner's cell wraps first.
+    #[inline(always)]
+    fn corners<L: Lanes>(&self, cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
         let depth = if D == 4 { 4 } else { 3 };
-        let mut hashes = [L::Int::splat(0); MAX_CORNERS];
-        let mut offsets = [[L::cst(0.0); D]; MAX_CORNERS];
-        for corner in 0..(1 << D) {
-            let mut h = self.perm.at(index(0, corner_bit(corner, 0)));
-            for d in 1..depth {
-                let step = if d < D { index(d, corner_bit(corner, d)) } else { L::Int::splat(0) };
-                h = self.perm.at(h.add(step));
-            }
-            hashes[corner] = h;
-            for d in 0..D {
-                offsets[corner][d] = if corner_bit(corner, d) == 1 { f[d] - L::cst(1.0) } else { f[d] };
+        let mut h = [L::Int::splat(0); MAX_CORNERS];
+        h[0] = self.perm.at(self.index(cells[0], 0, 0));
+        h[1] = self.perm.at(self.index(cells[0], 0, 1));
+        let mut count = 2;
+        for d in 1..depth {
+            if d < D {
+                let (lower, upper) = (self.index(cells[d], d, 0), self.index(cells[d], d, 1));
+                for c in (0..count).rev() {
+                    h[c + count] = self.perm.at(h[c].add(upper));
+                    h[c] = self.perm.at(h[c].add(lower));
+                }
+                count *= 2;
+            } else {
+                for hc in h.iter_mut().take(count) {
+                    *hc = self.perm.at(*hc);
+                }
             }
         }
-        (hashes, offsets, f)
+        let mut out = [Corner::zero(); MAX_CORNERS];
+        for c in 0..MAX_CORNERS {
+            out[c].i[0] = h[c];
+        }
+        out
+    }
+
+    /// 1D–3D: the terms of axes 1.. summed (`f[1]`), axis 0's sign as ±1
+    /// (`f[0]`) and whether it is picked (`i[0]`). 4D (whose three terms are
+    /// summed in a hash-dependent order): the hash and the offsets.
+    #[inline(always)]
+    fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L> {
+        let mut at = [L::cst(0.0); 4];
+        at[..D].copy_from_slice(&offset);
+        let mut b = Corner::zero();
+        if D == 4 {
+            b.i[0] = corner.i[0];
+            b.f[..3].copy_from_slice(&at[1..]);
+        } else {
+            let [x, y, z] = self.picks::<L>(corner.i[0]);
+            b.f[0] = L::select(x.1, L::cst(-1.0), L::cst(1.0));
+            b.f[1] = pick(at[1], y) + pick(at[2], z);
+            b.i[0] = L::Int::select(x.0, L::Int::splat(-1), L::Int::splat(0));
+        }
+        b
     }
 
     #[inline(always)]
-    fn eval<L: Lanes, const D: usize>(&self, p: [L; D]) -> L {
-        let (hashes, offsets, f) = self.corners(p);
-        let mut v = [L::cst(0.0); MAX_CORNERS];
-        for corner in 0..(1 << D) {
-            v[corner] = self.dot(hashes[corner], offsets[corner]);
+    fn eval<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+        if D == 4 {
+            Self::grad4(b.i[0], x, b.f[0], b.f[1], b.f[2])
+        } else {
+            let picked = b.i[0].lt(L::Int::splat(0));
+            L::select(picked, x * b.f[0] + b.f[1], b.f[1])
         }
-        interpolate(v, f.map(fade5))
-    }
-
-    #[inline(always)]
-    fn eval_gradient<L: Lanes, const D: usize>(&self, p: [L; D]) -> (L, [L; D]) {
-        let (hashes, offsets, f) = self.corners(p);
-        let mut v = [L::cst(0.0); MAX_CORNERS];
-        let mut g = [[L::cst(0.0); D]; MAX_CORNERS];
-        for corner in 0..(1 << D) {
-            v[corner] = self.dot(hashes[corner], offsets[corner]);
-            for k in 0..D {
-                // The gradient vector's k-th component is its dot with e_k.
-                let mut e = [L::cst(0.0); D];
-                e[k] = L::cst(1.0);
-                g[corner][k] = self.dot(hashes[corner], e);
-            }
-        }
-        interpolate_gradient(v, g, f.map(fade5), f.map(fade5_deriv))
     }
 }
 
@@ -183,13 +212,17 @@ macro_rules! impl_improved {
         impl Noise<$d> for Improved {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                self.eval(p)
+                lattice::sample(self, p)
+            }
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                lattice::fill_span::<Self, B, $d>(self, span, out)
             }
         }
         impl NoiseGradient<$d> for Improved {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                self.eval_gradient(p)
+                lattice::sample_gradient(self, p)
             }
         }
     )*};

@@ -3,6 +3,7 @@
 pub mod classic;
 pub mod fast;
 pub mod improved;
+pub(crate) mod lattice;
 pub mod modified;
 pub mod simplex;
 pub mod simplex_n;

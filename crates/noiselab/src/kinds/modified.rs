@@ -20,9 +20,11 @@
 //! Unconfirmed against the paper: the chaining order, pre-multipliers, the
 //! bit-to-gradient mapping and the output scale.
 
-use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, Period, PeriodError, MAX_CORNERS};
+use super::lattice::{self, Corner, Lattice};
+use super::{corner_bit, fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
+use crate::grid::Span;
 use crate::hash::fmix32;
-use crate::lanes::{cell, IntLanes, Lanes};
+use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use crate::noise::{Noise, NoiseGradient};
@@ -125,36 +127,6 @@ impl Modified {
     }
 }
 
-/// Corner values and gradient vectors of the cell around `p`, for any way
-/// of hashing a node.
-#[inline(always)]
-fn corners<L: Lanes, const D: usize>(
-    p: [L; D],
-    node_hash: impl Fn([L::Int; D]) -> L::Int,
-) -> ([L; MAX_CORNERS], [[L; D]; MAX_CORNERS], [L; D]) {
-    {
-        let (c, f) = cell(p);
-        let mut v = [L::cst(0.0); MAX_CORNERS];
-        let mut g = [[L::cst(0.0); D]; MAX_CORNERS];
-        for corner in 0..(1 << D) {
-            let mut node = c;
-            for (d, n) in node.iter_mut().enumerate() {
-                *n = n.add_c(corner_bit(corner, d));
-            }
-            let h = node_hash(node);
-            let mut dot = L::cst(0.0);
-            for d in 0..D {
-                let offset = if corner_bit(corner, d) == 1 { f[d] - L::cst(1.0) } else { f[d] };
-                let gd = L::select(h.bit(d as u32), L::cst(1.0), L::cst(-1.0));
-                g[corner][d] = gd;
-                dot = if d == 0 { gd * offset } else { dot + gd * offset };
-            }
-            v[corner] = dot;
-        }
-        (v, g, f)
-    }
-}
-
 /// Olano's other evaluation: the mod-61 hash of the z = w = 0 plane baked
 /// into a 61×61 table ("texture"), `T[x][y] = P(x + P(y))`, and higher
 /// dimensions combined from it procedurally: the plane of integer (z, w) is
@@ -197,28 +169,97 @@ impl ModifiedTexture {
     }
 }
 
+/// Both evaluations share everything but the node hash.
+macro_rules! modified_lattice {
+    ($t:ty) => {
+        impl<const D: usize> Lattice<D> for $t {
+            const FLOATS: usize = D;
+            const INTS: usize = 0;
+
+            #[inline(always)]
+            fn fade<L: Lanes>(&self, t: L) -> L {
+                fade5(t)
+            }
+
+            #[inline(always)]
+            fn fade_deriv<L: Lanes>(&self, t: L) -> L {
+                fade5_deriv(t)
+            }
+
+            /// The corners' gradient vectors, ±1 per axis from the hash's low bits.
+            #[inline(always)]
+            fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
+                let mut out = [Corner::zero(); MAX_CORNERS];
+                for (corner, c) in out.iter_mut().enumerate().take(1 << D) {
+                    let mut node = cell;
+                    for (d, n) in node.iter_mut().enumerate() {
+                        *n = n.add_c(corner_bit(corner, d));
+                    }
+                    let h = self.node_hash(self.period().wrap_cell(node));
+                    for d in 0..D {
+                        c.f[d] = L::select(h.bit(d as u32), L::cst(1.0), L::cst(-1.0));
+                    }
+                }
+                out
+            }
+
+            /// `f[0]` keeps axis 0's gradient component; `f[d]` becomes the
+            /// term `g_d · offset_d`.
+            #[inline(always)]
+            fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L> {
+                let mut b = corner;
+                for d in 1..D {
+                    b.f[d] = corner.f[d] * offset[d];
+                }
+                b
+            }
+
+            /// The dot product, summed from axis 0 up.
+            #[inline(always)]
+            fn eval<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+                let mut dot = b.f[0] * x;
+                for d in 1..D {
+                    dot = dot + b.f[d];
+                }
+                dot
+            }
+
+            #[inline(always)]
+            fn scale(&self) -> f64 {
+                SCALE
+            }
+        }
+    };
+}
+modified_lattice!(Modified);
+modified_lattice!(ModifiedTexture);
+
 macro_rules! impl_modified {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Modified {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let (v, _, f) = corners(p, |n| self.node_hash(self.period().wrap_cell(n)));
-                interpolate(v, f.map(fade5)) * L::cst(SCALE)
+                lattice::sample(self, p)
+            }
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                lattice::fill_span::<Self, B, $d>(self, span, out)
             }
         }
         impl Noise<$d> for ModifiedTexture {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let (v, _, f) = corners(p, |n| self.node_hash(self.period().wrap_cell(n)));
-                interpolate(v, f.map(fade5)) * L::cst(SCALE)
+                lattice::sample(self, p)
+            }
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                lattice::fill_span::<Self, B, $d>(self, span, out)
             }
         }
         impl NoiseGradient<$d> for Modified {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                let (v, g, f) = corners(p, |n| self.node_hash(self.period().wrap_cell(n)));
-                let (value, grad) = interpolate_gradient(v, g, f.map(fade5), f.map(fade5_deriv));
-                (value * L::cst(SCALE), grad.map(|c| c * L::cst(SCALE)))
+                lattice::sample_gradient(self, p)
             }
         }
     )*};

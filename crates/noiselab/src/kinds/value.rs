@@ -1,9 +1,11 @@
 //! Value noise: a random value at each lattice node, interpolated with the
 //! quintic fade.
 
-use super::{corner_bit, fade5, fade5_deriv, interpolate, interpolate_gradient, Period, PeriodError, MAX_CORNERS};
+use super::lattice::{self, Corner, Lattice};
+use super::{corner_bit, fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
+use crate::grid::Span;
 use crate::hash::hash_cell;
-use crate::lanes::{cell, IntLanes, Lanes};
+use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
 
 /// Lattice value noise, 1D–4D.
@@ -39,20 +41,52 @@ impl Value {
         self.seed
     }
 
+}
+
+impl<const D: usize> Lattice<D> for Value {
+    const FLOATS: usize = 1;
+    const INTS: usize = 0;
+
     #[inline(always)]
-    fn corners<L: Lanes, const D: usize>(&self, p: [L; D]) -> ([L; MAX_CORNERS], [L; D]) {
-        let (c, f) = cell(p);
-        let mut v = [L::cst(0.0); MAX_CORNERS];
-        for (corner, vc) in v.iter_mut().enumerate().take(1 << D) {
-            let mut node = c;
+    fn fade<L: Lanes>(&self, t: L) -> L {
+        fade5(t)
+    }
+
+    #[inline(always)]
+    fn fade_deriv<L: Lanes>(&self, t: L) -> L {
+        fade5_deriv(t)
+    }
+
+    /// Each node's value, in `f[0]`.
+    #[inline(always)]
+    fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
+        let mut out = [Corner::zero(); MAX_CORNERS];
+        for (corner, c) in out.iter_mut().enumerate().take(1 << D) {
+            let mut node = cell;
             for (d, n) in node.iter_mut().enumerate() {
                 *n = n.add_c(corner_bit(corner, d));
             }
             // Top 24 bits → k ∈ [0, 2²⁴), exact in f32; k/2²³ − 1 ∈ [−1, 1).
             let k = hash_cell(self.period.wrap_cell(node), self.seed).shr(8);
-            *vc = L::from_int(k) * L::cst(1.0 / 8_388_608.0) - L::cst(1.0);
+            c.f[0] = L::from_int(k) * L::cst(1.0 / 8_388_608.0) - L::cst(1.0);
         }
-        (v, f)
+        out
+    }
+
+    #[inline(always)]
+    fn bind<L: Lanes>(&self, corner: Corner<L>, _offset: [L; D]) -> Corner<L> {
+        corner
+    }
+
+    #[inline(always)]
+    fn eval<L: Lanes>(&self, bound: &Corner<L>, _x: L) -> L {
+        bound.f[0]
+    }
+
+    /// Corners are constant: the gradient comes from the fades alone.
+    #[inline(always)]
+    fn corner_gradient<L: Lanes>(&self, _corner: Corner<L>) -> [L; D] {
+        [L::cst(0.0); D]
     }
 }
 
@@ -61,16 +95,17 @@ macro_rules! impl_value {
         impl Noise<$d> for Value {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let (v, f) = self.corners(p);
-                interpolate(v, f.map(fade5))
+                lattice::sample(self, p)
+            }
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                lattice::fill_span::<Self, B, $d>(self, span, out)
             }
         }
         impl NoiseGradient<$d> for Value {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                let (v, f) = self.corners(p);
-                let g = [[L::cst(0.0); $d]; MAX_CORNERS];
-                interpolate_gradient(v, g, f.map(fade5), f.map(fade5_deriv))
+                lattice::sample_gradient(self, p)
             }
         }
     )*};

@@ -11,13 +11,17 @@
 //! Integer lanes ([`IntLanes`]) carry lattice coordinates and hashes. They are
 //! 32-bit and wrap on overflow in every build profile.
 
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx2;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx512;
 mod scalar;
-mod x8;
+mod wide;
 
 use core::fmt::Debug;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
-pub use x8::{F32x8, I32x8, M32x8};
+pub use wide::{F32x16, F32x8, I32x16, I32x8, M32x16, M32x8};
 
 pub(crate) mod sealed {
     pub trait Sealed {}
@@ -124,6 +128,23 @@ pub trait Lanes:
     fn sq(self) -> Self {
         self * self
     }
+}
+
+/// The lane types batches are evaluated in ([`F32x8`], [`F32x16`]): `f32`
+/// lanes that can also be stored and loaded in bulk.
+pub trait BatchLanes: Lanes<Elem = f32> {
+    /// Write the lanes to `out[..WIDTH]`.
+    fn store(self, out: &mut [f32]);
+    /// Integer lanes 0, 1, …, WIDTH − 1.
+    fn iota() -> Self::Int;
+    /// Write integer lanes to `out[..WIDTH]`.
+    fn store_int(v: Self::Int, out: &mut [i32]);
+    /// Integer lanes from `v[..WIDTH]`.
+    fn load_int(v: &[i32]) -> Self::Int;
+    /// The lanes' bit patterns.
+    fn to_bits(self) -> Self::Int;
+    /// Lanes with the given bit patterns.
+    fn from_bits(i: Self::Int) -> Self;
 }
 
 /// Signed 32-bit integer lanes with wrapping arithmetic.

@@ -1,0 +1,607 @@
+//! Lattice noise, written once: what a lattice kind defines (the records of
+//! a cell's corners and how a record becomes a value) and everything built
+//! from that — point evaluation, analytic gradients, and the grid fill that
+//! hashes once per cell instead of once per point.
+//!
+//! A kind splits its corner function in three so that a grid can do each
+//! part where it changes:
+//!
+//! * [`Lattice::corners`] hashes the cell (per cell and grid plane: the
+//!   expensive part, table lookups);
+//! * [`Lattice::bind`] folds in the offsets along axes 1.. (per grid row);
+//! * [`Lattice::eval`] adds the offset along axis 0 (per point).
+//!
+//! Point evaluation runs the three in a row, so `eval(bind(corner))` *is*
+//! the corner function and the grid fill performs, for every point, the
+//! same IEEE operations on the same operands as [`Noise::get_f32`]: the
+//! results are identical bit for bit, only the work is shared.
+//!
+//! [`Accuracy::Fast`] goes one step further for grids: along a row inside a
+//! cell, a lattice noise is `P(u) + s(u)·Q(u)` with `P`, `Q` affine in the
+//! position `u` and `s` the fade, so four coefficients per cell and row
+//! replace the corners (three multiplies and three adds per point).
+//!
+//! [`Noise::get_f32`]: crate::Noise::get_f32
+
+use super::{interpolate, interpolate_gradient, MAX_CORNERS};
+use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span};
+use crate::lanes::{BatchLanes, IntLanes, Lanes};
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// What a corner contributes, in whatever form a kind needs: up to four
+/// floats and two integers per lane (unused fields stay zero and cost
+/// nothing after inlining).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Corner<L: Lanes> {
+    pub f: [L; 4],
+    pub i: [L::Int; 2],
+}
+
+impl<L: Lanes> Corner<L> {
+    /// All fields zero.
+    #[inline(always)]
+    pub fn zero() -> Self {
+        Corner { f: [L::cst(0.0); 4], i: [L::Int::splat(0); 2] }
+    }
+}
+
+/// A lattice noise: values from the 2^D corners of the cell around a point,
+/// blended by a fade, axis 0 innermost.
+pub(crate) trait Lattice<const D: usize>: Send + Sync {
+    /// The cell of coordinate `x` (wrapping to 32 bits) and the position
+    /// inside it.
+    #[inline(always)]
+    fn split<L: Lanes>(&self, x: L) -> (L::Int, L) {
+        let fl = x.floor();
+        (fl.to_int_wrapping(), x - fl)
+    }
+
+    /// How many of [`Corner`]'s float and integer fields the kind's records
+    /// use (the grid fill stores and moves only these).
+    const FLOATS: usize;
+    /// See [`Lattice::FLOATS`].
+    const INTS: usize;
+
+    /// The blend weight of a position inside a cell.
+    fn fade<L: Lanes>(&self, t: L) -> L;
+
+    /// The derivative of [`Lattice::fade`].
+    fn fade_deriv<L: Lanes>(&self, t: L) -> L;
+
+    /// The records of the corners of `cell`; corner `c` is the upper corner
+    /// on axis `d` when bit `d` of `c` is set. Entries from 2^D on are unused.
+    fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS];
+
+    /// A corner's record with the offsets along axes 1.. folded in
+    /// (`offset[0]` is not read).
+    fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L>;
+
+    /// The corner's value at offset `x` along axis 0, from a bound record.
+    /// Must be affine in `x` for [`Accuracy::Fast`].
+    fn eval<L: Lanes>(&self, bound: &Corner<L>, x: L) -> L;
+
+    /// The gradient of the corner's function (its value at each unit
+    /// offset: right for gradient kinds, whose corners are linear).
+    #[inline(always)]
+    fn corner_gradient<L: Lanes>(&self, corner: Corner<L>) -> [L; D] {
+        let mut g = [L::cst(0.0); D];
+        for k in 0..D {
+            let mut e = [L::cst(0.0); D];
+            e[k] = L::cst(1.0);
+            g[k] = self.eval(&self.bind(corner, e), e[0]);
+        }
+        g
+    }
+
+    /// A constant factor applied to the blended value (and its gradient).
+    #[inline(always)]
+    fn scale(&self) -> f64 {
+        1.0
+    }
+}
+
+/// The offsets from corner `c` to a point at position `f` in its cell.
+#[inline(always)]
+fn offsets<L: Lanes, const D: usize>(f: [L; D], c: usize) -> [L; D] {
+    let mut off = f;
+    for d in 0..D {
+        if (c >> d) & 1 == 1 {
+            off[d] = f[d] - L::cst(1.0);
+        }
+    }
+    off
+}
+
+/// Cells and positions of a point's coordinates.
+#[inline(always)]
+fn split_point<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, p: [L; D]) -> ([L::Int; D], [L; D]) {
+    let mut cell = [L::Int::splat(0); D];
+    let mut f = p;
+    for d in 0..D {
+        (cell[d], f[d]) = kind.split(p[d]);
+    }
+    (cell, f)
+}
+
+/// The fades' derivatives at a point's positions.
+#[inline(always)]
+fn fade_derivs<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, f: [L; D]) -> [L; D] {
+    let mut s = f;
+    for d in 0..D {
+        s[d] = kind.fade_deriv(f[d]);
+    }
+    s
+}
+
+/// The fades of a point's positions.
+#[inline(always)]
+fn fades<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, f: [L; D]) -> [L; D] {
+    let mut s = f;
+    for d in 0..D {
+        s[d] = kind.fade(f[d]);
+    }
+    s
+}
+
+#[inline(always)]
+fn finish<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, v: L) -> L {
+    if kind.scale() == 1.0 {
+        v
+    } else {
+        v * L::cst(kind.scale())
+    }
+}
+
+/// Point evaluation.
+#[inline(always)]
+pub(crate) fn sample<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, p: [L; D]) -> L {
+    let (cell, f) = split_point(kind, p);
+    let corners = kind.corners(cell);
+    let mut v = [L::cst(0.0); MAX_CORNERS];
+    for c in 0..(1 << D) {
+        let off = offsets(f, c);
+        v[c] = kind.eval(&kind.bind(corners[c], off), off[0]);
+    }
+    finish(kind, interpolate(v, fades(kind, f)))
+}
+
+/// Value and analytic gradient; the value is [`sample`]'s bit for bit.
+#[inline(always)]
+pub(crate) fn sample_gradient<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, p: [L; D]) -> (L, [L; D]) {
+    let (cell, f) = split_point(kind, p);
+    let corners = kind.corners(cell);
+    let mut v = [L::cst(0.0); MAX_CORNERS];
+    let mut g = [[L::cst(0.0); D]; MAX_CORNERS];
+    for c in 0..(1 << D) {
+        let off = offsets(f, c);
+        v[c] = kind.eval(&kind.bind(corners[c], off), off[0]);
+        g[c] = kind.corner_gradient(corners[c]);
+    }
+    let (value, grad) =
+        interpolate_gradient(v, g, fades(kind, f), fade_derivs(kind, f));
+    let mut scaled = grad;
+    for d in 0..D {
+        scaled[d] = finish(kind, grad[d]);
+    }
+    (finish(kind, value), scaled)
+}
+
+/// Cells' records in blocks of sixteen, field-major within a block (field
+/// k of cell 16b + j at `[(b·fields + k)·16 + j]`): a block of cells loads
+/// and stores as lanes, and one cell's field is one indexed load. Integer
+/// fields are stored as their bits.
+struct Blocks {
+    fields: usize,
+    data: Vec<f32>,
+}
+
+impl Blocks {
+    fn new(fields: usize, cells: usize) -> Self {
+        Blocks { fields, data: vec![0.0; cells.div_ceil(16) * fields * 16] }
+    }
+
+    #[inline(always)]
+    fn at(&self, field: usize, cell: usize) -> usize {
+        ((cell >> 4) * self.fields + field) * 16 + (cell & 15)
+    }
+
+    /// Field `field` of cells `cell..cell + WIDTH` (`cell` a multiple of WIDTH).
+    #[inline(always)]
+    fn load<B: BatchLanes>(&self, field: usize, cell: usize) -> B {
+        B::from_slice(&self.data[self.at(field, cell)..])
+    }
+
+    #[inline(always)]
+    fn store<B: BatchLanes>(&mut self, field: usize, cell: usize, v: B) {
+        let at = self.at(field, cell);
+        v.store(&mut self.data[at..]);
+    }
+
+}
+
+/// Fields per corner in a record.
+#[inline(always)]
+const fn fields<K: Lattice<D>, const D: usize>() -> usize {
+    K::FLOATS + K::INTS
+}
+
+/// Fields per cell: every corner's, floats then integers.
+#[inline(always)]
+const fn cell_fields<K: Lattice<D>, const D: usize>() -> usize {
+    (1 << D) * fields::<K, D>()
+}
+
+/// Where lanes find their records' fields. (Traits, not closures: a
+/// closure that LLVM declines to inline would run outside the batch
+/// driver's instruction-set clone.)
+trait Source<B: BatchLanes> {
+    /// Field `k` (for every lane).
+    fn field(&self, k: usize) -> B;
+
+    /// Corner `c`'s record.
+    #[inline(always)]
+    fn corner<K: Lattice<D>, const D: usize>(&self, c: usize) -> Corner<B> {
+        let base = c * fields::<K, D>();
+        let mut r = Corner::zero();
+        for m in 0..K::FLOATS {
+            r.f[m] = self.field(base + m);
+        }
+        for m in 0..K::INTS {
+            r.i[m] = self.field(base + K::FLOATS + m).to_bits();
+        }
+        r
+    }
+}
+
+/// A block of consecutive cells, one per lane.
+struct CellBlock<'a> {
+    blocks: &'a Blocks,
+    first: usize,
+}
+
+impl<B: BatchLanes> Source<B> for CellBlock<'_> {
+    #[inline(always)]
+    fn field(&self, k: usize) -> B {
+        self.blocks.load(k, self.first)
+    }
+}
+
+/// Every lane in one cell: the cell's fields, sixteen apart from its field 0.
+struct OneCell<'a>(&'a [f32]);
+
+impl<'a> OneCell<'a> {
+    /// The cell whose field 0 is `data[at]`, with `fields` fields.
+    #[inline(always)]
+    fn new(data: &'a [f32], at: usize, fields: usize) -> Self {
+        OneCell(&data[at..][..16 * (fields - 1) + 1])
+    }
+}
+
+impl<B: BatchLanes> Source<B> for OneCell<'_> {
+    #[inline(always)]
+    fn field(&self, k: usize) -> B {
+        B::splat(self.0[16 * k])
+    }
+}
+
+/// Lanes in different cells: each lane's field gathered (`at` is each
+/// lane's cell's field 0, as an index into the blocks).
+struct PerLane<'a, B: BatchLanes> {
+    data: &'a [f32],
+    at: B::Int,
+}
+
+impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
+    #[inline(always)]
+    fn field(&self, k: usize) -> B {
+        B::gather(self.data, self.at.add_c(16 * k as i32))
+    }
+}
+
+/// Lanes' worth of columns in one cell: columns `start..start + WIDTH`, of
+/// which those before `end` are the cell's (the rest belong to later
+/// chunks); the cell's field 0 is `blocks[at]`.
+#[derive(Clone, Copy)]
+struct Chunk {
+    start: usize,
+    end: usize,
+    at: usize,
+}
+
+/// The grid fill: corners hashed once per cell and grid plane, bound once
+/// per cell and row, evaluated per point. Falls back to point evaluation
+/// where cells are too sparse for that to pay (more cells than points).
+#[inline(always)]
+pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    span: Span<'_, D>,
+    out: &mut [f32],
+) {
+    let w = B::WIDTH;
+    let corners = 1usize << D;
+    let xs = span.axes.axis(0);
+    let nx = xs.len();
+    if out.is_empty() || nx == 0 {
+        return;
+    }
+    // Columns this span touches.
+    let first = span.start % nx;
+    let (lo, hi) = if first + out.len() <= nx { (first, first + out.len()) } else { (0, nx) };
+
+    // Axis 0 once per span: cell, position and fade of each column.
+    let cols = hi - lo;
+    let padded = cols.div_ceil(w) * w + w;
+    let (mut cell0, mut frac0, mut fade0) = (vec![0i32; padded], vec![0f32; padded], vec![0f32; padded]);
+    let mut k = 0;
+    while k < cols {
+        let mut xk = [0f32; 16];
+        for (j, x) in xk.iter_mut().enumerate().take(w) {
+            *x = xs[lo + (k + j).min(cols - 1)];
+        }
+        let (c, f) = kind.split(B::from_slice(&xk));
+        B::store_int(c, &mut cell0[k..]);
+        f.store(&mut frac0[k..]);
+        kind.fade(f).store(&mut fade0[k..]);
+        k += w;
+    }
+    // Runs of equal cells; cells numbered from the smallest.
+    let (min_cell, max_cell) = cell0[..cols].iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)));
+    let ncell = (max_cell as i64 - min_cell as i64 + 1) as usize;
+    if ncell > 2 * cols + 64 {
+        return fill_pointwise::<K, B, D>(kind, span, out);
+    }
+    // Runs of columns in one cell, as (start, end, cell).
+    let mut runs: Vec<(usize, usize, usize)> = Vec::new();
+    for (j, &c) in cell0[..cols].iter().enumerate() {
+        let cell = (c as i64 - min_cell as i64) as usize;
+        match runs.last_mut() {
+            Some(r) if r.2 == cell => r.1 = j + 1,
+            _ => runs.push((j, j + 1, cell)),
+        }
+    }
+    let fast = span.accuracy == Accuracy::Fast;
+    let stride = if fast { 4 } else { cell_fields::<K, D>() };
+    let mut bound = Blocks::new(stride, ncell + w);
+    // Splat a cell's record over whole lanes when runs fill them; gather
+    // per lane when they are short.
+    let long_runs = cols >= runs.len() * w / 2;
+    let mut chunks: Vec<Chunk> = Vec::new();
+    let mut chunk_axis: Vec<ChunkAxis> = Vec::new();
+    if long_runs {
+        for &(start, end, cell) in &runs {
+            for s in (start..end).step_by(w) {
+                chunks.push(Chunk { start: s, end, at: bound.at(0, cell) });
+                let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
+                a.x[..w].copy_from_slice(&frac0[s..s + w]);
+                a.fade[..w].copy_from_slice(&fade0[s..s + w]);
+                chunk_axis.push(a);
+            }
+        }
+    }
+    // For the per-lane path: each column's cell as an index to its field 0.
+    for (j, c) in cell0[..padded].iter_mut().enumerate() {
+        *c = if j < cols { bound.at(0, (*c).wrapping_sub(min_cell) as usize) as i32 } else { 0 };
+    }
+    let mut hashed = Blocks::new(cell_fields::<K, D>(), ncell + w);
+    let mut plane: Option<[i32; D]> = None;
+
+    for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
+        // Axes 1..: the same for the whole row.
+        let idx = span.axes.row_indices(row);
+        let mut cell = [0i32; D];
+        let mut f = [0f32; D];
+        for d in 1..D {
+            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
+        }
+        if plane != Some(cell) {
+            // A new plane of cells: hash the row's cells, a block of lanes at a time.
+            let mut k = 0;
+            while k < ncell {
+                let mut c = [B::Int::splat(0); D];
+                c[0] = B::iota().add(B::Int::splat(min_cell.wrapping_add(k as i32)));
+                for d in 1..D {
+                    c[d] = B::Int::splat(cell[d]);
+                }
+                let recs = kind.corners::<B>(c);
+                for (corner, r) in recs.iter().enumerate().take(corners) {
+                    let base = corner * fields::<K, D>();
+                    for m in 0..K::FLOATS {
+                        hashed.store(base + m, k, r.f[m]);
+                    }
+                    for m in 0..K::INTS {
+                        hashed.store(base + K::FLOATS + m, k, B::from_bits(r.i[m]));
+                    }
+                }
+                k += w;
+            }
+            plane = Some(cell);
+        }
+        // Bind the row's offsets to every cell's corners (or, fast, reduce
+        // them to the row polynomial), stored cell by cell.
+        let mut weights = [B::splat(0.0); D];
+        let mut fs = [B::splat(0.0); D];
+        for d in 1..D {
+            weights[d] = B::splat(kind.fade(f[d]));
+            fs[d] = B::splat(f[d]);
+        }
+        // Fast: the weight of each pair of corners along axis 0 in the
+        // blend over axes 1.. (pair k is upper on axis d + 1 when bit d of k is set).
+        let mut pair_weights = [B::cst(1.0); MAX_CORNERS / 2];
+        for (k, pw) in pair_weights.iter_mut().enumerate().take(corners / 2) {
+            for d in 1..D {
+                let s = weights[d];
+                *pw = *pw * if (k >> (d - 1)) & 1 == 1 { s } else { B::cst(1.0) - s };
+            }
+        }
+        let mut k = 0;
+        while k < ncell {
+            let cells = CellBlock { blocks: &hashed, first: k };
+            if fast {
+                for (m, v) in polynomial(kind, &cells, fs, &pair_weights).into_iter().enumerate() {
+                    bound.store(m, k, v);
+                }
+            } else {
+                for c in 0..corners {
+                    let r = kind.bind(cells.corner::<K, D>(c), offsets(fs, c));
+                    let base = c * fields::<K, D>();
+                    for m in 0..K::FLOATS {
+                        bound.store(base + m, k, r.f[m]);
+                    }
+                    for m in 0..K::INTS {
+                        bound.store(base + K::FLOATS + m, k, B::from_bits(r.i[m]));
+                    }
+                }
+            }
+            k += w;
+        }
+
+        // The points: for each run of columns in one cell, whole lanes.
+        // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
+        // end are overwritten by the next run or row, or not stored.
+        let row = Row { frac: &frac0, fade: &fade0, weights };
+        let row_end = i0 + n - lo;
+        let (a0, a1) = (i0 - lo, row_end);
+        let whole = a0 == 0 && a1 == cols;
+        match (long_runs, fast) {
+            // Whole rows: every chunk, written where it starts.
+            (true, false) if whole => {
+                let fields = cell_fields::<K, D>();
+                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
+                    let (x, fade) = axis.lanes::<B>();
+                    let v = row.exact_at(kind, x, fade, &OneCell::new(&bound.data, ch.at, fields));
+                    emit(v, &mut out[o0 + ch.start..]);
+                }
+            }
+            (true, true) if whole => {
+                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
+                    let (x, fade) = axis.lanes::<B>();
+                    emit(poly_at(x, fade, &OneCell::new(&bound.data, ch.at, 4)), &mut out[o0 + ch.start..]);
+                }
+            }
+            // Part of a row: chunks clipped to it.
+            (true, false) => {
+                for ch in &chunks {
+                    let s = ch.start.max(a0);
+                    if s < ch.end.min(a1) {
+                        let rec = OneCell::new(&bound.data, ch.at, cell_fields::<K, D>());
+                        emit(row.exact(kind, s, &rec), &mut out[o0 + s - a0..]);
+                    }
+                }
+            }
+            (true, true) => {
+                for ch in &chunks {
+                    let s = ch.start.max(a0);
+                    if s < ch.end.min(a1) {
+                        let coef = OneCell::new(&bound.data, ch.at, 4);
+                        emit(row.poly(s, &coef), &mut out[o0 + s - a0..]);
+                    }
+                }
+            }
+            (false, fast) => {
+                let mut s = a0;
+                while s < a1 {
+                    let rec = PerLane { data: &bound.data, at: B::load_int(&cell0[s..]) };
+                    let v = if fast { row.poly(s, &rec) } else { row.exact(kind, s, &rec) };
+                    emit(v, &mut out[o0 + s - a0..]);
+                    s += w;
+                }
+            }
+        }
+    }
+}
+
+/// What a grid row's points share: axis 0's positions and fades by column,
+/// and the fades of axes 1...
+struct Row<'a, B: BatchLanes, const D: usize> {
+    frac: &'a [f32],
+    fade: &'a [f32],
+    weights: [B; D],
+}
+
+impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
+    /// The points at columns `s..s + WIDTH`, from their cells' bound corners.
+    #[inline(always)]
+    fn exact<K: Lattice<D>>(&self, kind: &K, s: usize, rec: &impl Source<B>) -> B {
+        self.exact_at(kind, B::from_slice(&self.frac[s..]), B::from_slice(&self.fade[s..]), rec)
+    }
+
+    /// The points at positions `x` (fades `fade`) along axis 0.
+    #[inline(always)]
+    fn exact_at<K: Lattice<D>>(&self, kind: &K, x: B, fade: B, rec: &impl Source<B>) -> B {
+        let xm1 = x - B::cst(1.0);
+        let mut weights = self.weights;
+        weights[0] = fade;
+        let mut v = [B::cst(0.0); MAX_CORNERS];
+        for c in 0..(1 << D) {
+            v[c] = kind.eval(&rec.corner::<K, D>(c), if c & 1 == 1 { xm1 } else { x });
+        }
+        finish(kind, interpolate(v, weights))
+    }
+
+    /// The same points from their cells' row polynomials ([`Accuracy::Fast`]).
+    #[inline(always)]
+    fn poly(&self, s: usize, coef: &impl Source<B>) -> B {
+        poly_at(B::from_slice(&self.frac[s..]), B::from_slice(&self.fade[s..]), coef)
+    }
+}
+
+/// The row polynomial at positions `x` (fades `fade`).
+#[inline(always)]
+fn poly_at<B: BatchLanes>(x: B, fade: B, coef: &impl Source<B>) -> B {
+    (coef.field(0) + coef.field(1) * x) + fade * (coef.field(2) + coef.field(3) * x)
+}
+
+/// A chunk's positions and fades, stored with it so whole rows read them
+/// without index arithmetic.
+#[derive(Clone, Copy)]
+struct ChunkAxis {
+    x: [f32; 16],
+    fade: [f32; 16],
+}
+
+impl ChunkAxis {
+    #[inline(always)]
+    fn lanes<B: BatchLanes>(&self) -> (B, B) {
+        (B::from_slice(&self.x), B::from_slice(&self.fade))
+    }
+}
+
+/// Store up to WIDTH lanes at the start of `out`.
+#[inline(always)]
+fn emit<B: BatchLanes>(v: B, out: &mut [f32]) {
+    let count = out.len().min(B::WIDTH);
+    store_prefix(v, &mut out[..count]);
+}
+
+/// [`Accuracy::Fast`]'s coefficients for a block of cells: the row inside
+/// each cell is `(p₀ + p₁·u) + s(u)·(q₀ + q₁·u)`, from the bound corners
+/// (`eval` is affine in u) weighted by the row's fixed blend over axes 1...
+#[inline(always)]
+fn polynomial<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    hashed: &impl Source<B>,
+    fs: [B; D],
+    pair_weights: &[B; MAX_CORNERS / 2],
+) -> [B; 4] {
+    let mut sum = [B::cst(0.0); 4];
+    for k in 0..(1 << (D - 1)) {
+        // Corners 2k and 2k + 1 differ on axis 0: A(u) = a + b·u (lower
+        // corner, offset u) and B(u) − A(u) = c + d·u (upper, offset u − 1).
+        let lo = kind.bind(hashed.corner::<K, D>(2 * k), offsets(fs, 2 * k));
+        let up = kind.bind(hashed.corner::<K, D>(2 * k + 1), offsets(fs, 2 * k + 1));
+        let a = kind.eval(&lo, B::cst(0.0));
+        let b = kind.eval(&lo, B::cst(1.0)) - a;
+        let up0 = kind.eval(&up, B::cst(0.0));
+        let e = kind.eval(&up, B::cst(1.0)) - up0;
+        let wk = pair_weights[k];
+        let terms = [a, b, (up0 - e) - a, e - b];
+        for m in 0..4 {
+            sum[m] = sum[m] + wk * terms[m];
+        }
+    }
+    for v in sum.iter_mut() {
+        *v = finish(kind, *v);
+    }
+    sum
+}

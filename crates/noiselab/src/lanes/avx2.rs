@@ -1,0 +1,322 @@
+//! Eight lanes in AVX2 registers: the lane type of the AVX2 batch clones.
+//!
+//! Written with `core::arch` intrinsics rather than as arrays so that LLVM
+//! sees one vector value per operation (with arrays it sometimes vectorises
+//! across corners instead, with gathers and scatters). Each operation is the
+//! IEEE-754 operation the scalar `f32` path performs, lane by lane.
+//!
+//! The types are crate-private and only ever instantiated inside functions
+//! compiled with `#[target_feature(enable = "avx2")]`
+//! that the batch drivers call after detecting those features (`grid.rs`):
+//! that is what makes the `unsafe` intrinsic calls below sound.
+
+use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, F32x8};
+use core::arch::x86_64::*;
+use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// Eight `f32` lanes in a `ymm` register.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct X8(__m256);
+
+/// Eight `i32` lanes in a `ymm` register.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct I8(__m256i);
+
+/// Eight lane masks, each lane all ones (true) or all zeros (false).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct M8(__m256i);
+
+impl Sealed for X8 {}
+impl Sealed for I8 {}
+
+impl X8 {
+    #[inline(always)]
+    fn to_array(self) -> [f32; 8] {
+        let mut a = [0f32; 8];
+        // SAFETY: AVX2 is enabled wherever X8 exists (module docs).
+        unsafe { _mm256_storeu_ps(a.as_mut_ptr(), self.0) };
+        a
+    }
+    #[inline(always)]
+    fn from_array(a: [f32; 8]) -> Self {
+        // SAFETY: as above.
+        X8(unsafe { _mm256_loadu_ps(a.as_ptr()) })
+    }
+}
+
+impl I8 {
+    #[inline(always)]
+    fn to_array(self) -> [i32; 8] {
+        let mut a = [0i32; 8];
+        // SAFETY: as above.
+        unsafe { _mm256_storeu_si256(a.as_mut_ptr().cast(), self.0) };
+        a
+    }
+    #[inline(always)]
+    fn from_array(a: [i32; 8]) -> Self {
+        // SAFETY: as above.
+        I8(unsafe { _mm256_loadu_si256(a.as_ptr().cast()) })
+    }
+}
+
+macro_rules! float_op {
+    ($tr:ident, $f:ident, $intr:ident) => {
+        impl $tr for X8 {
+            type Output = X8;
+            #[inline(always)]
+            fn $f(self, o: X8) -> X8 {
+                // SAFETY: AVX (module docs).
+                X8(unsafe { $intr(self.0, o.0) })
+            }
+        }
+    };
+}
+float_op!(Add, add, _mm256_add_ps);
+float_op!(Sub, sub, _mm256_sub_ps);
+float_op!(Mul, mul, _mm256_mul_ps);
+float_op!(Div, div, _mm256_div_ps);
+
+impl Neg for X8 {
+    type Output = X8;
+    #[inline(always)]
+    fn neg(self) -> X8 {
+        // SAFETY: AVX (module docs). Negation flips the sign bit.
+        X8(unsafe { _mm256_xor_ps(self.0, _mm256_set1_ps(-0.0)) })
+    }
+}
+
+impl BitAnd for M8 {
+    type Output = M8;
+    #[inline(always)]
+    fn bitand(self, o: M8) -> M8 {
+        // SAFETY: AVX2 (module docs).
+        M8(unsafe { _mm256_and_si256(self.0, o.0) })
+    }
+}
+impl BitOr for M8 {
+    type Output = M8;
+    #[inline(always)]
+    fn bitor(self, o: M8) -> M8 {
+        // SAFETY: AVX2 (module docs).
+        M8(unsafe { _mm256_or_si256(self.0, o.0) })
+    }
+}
+impl Not for M8 {
+    type Output = M8;
+    #[inline(always)]
+    fn not(self) -> M8 {
+        // SAFETY: AVX2 (module docs).
+        M8(unsafe { _mm256_xor_si256(self.0, _mm256_set1_epi32(-1)) })
+    }
+}
+
+// SAFETY (every `unsafe` block below): AVX2 is enabled
+// wherever these types exist (module docs); loads and stores go through
+// slices of at least sixteen elements, checked by indexing.
+impl Lanes for X8 {
+    type Elem = f32;
+    type Int = I8;
+    type Mask = M8;
+    const WIDTH: usize = 8;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        X8(unsafe { _mm256_set1_ps(x) })
+    }
+    #[inline(always)]
+    fn from_slice(v: &[f32]) -> Self {
+        let v = &v[..8];
+        X8(unsafe { _mm256_loadu_ps(v.as_ptr()) })
+    }
+    #[inline(always)]
+    fn lane(self, k: usize) -> f32 {
+        self.to_array()[k]
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        // Round toward −∞, no precision exception: floorf lane by lane.
+        X8(unsafe { _mm256_round_ps::<0x09>(self.0) })
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        X8(unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0) })
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        X8(unsafe { _mm256_sqrt_ps(self.0) })
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        // minps(a, b) = a < b ? a : b, the scalar `if o < self { o } else { self }`.
+        X8(unsafe { _mm256_min_ps(o.0, self.0) })
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        X8(unsafe { _mm256_max_ps(o.0, self.0) })
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> M8 {
+        M8(unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0)) })
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> M8 {
+        M8(unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)) })
+    }
+    #[inline(always)]
+    fn select(m: M8, a: Self, b: Self) -> Self {
+        X8(unsafe { _mm256_blendv_ps(b.0, a.0, _mm256_castsi256_ps(m.0)) })
+    }
+    #[inline(always)]
+    fn any(m: M8) -> bool {
+        unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(m.0)) != 0 }
+    }
+    #[inline(always)]
+    fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self {
+        X8::from_array(noise.sample_x8(p.map(|c| F32x8(c.to_array()))).0)
+    }
+    #[inline(always)]
+    fn powf(self, e: Self) -> Self {
+        let (a, b) = (self.to_array(), e.to_array());
+        let mut out = [0f32; 8];
+        for k in 0..8 {
+            out[k] = libm::powf(a[k], b[k]);
+        }
+        X8::from_array(out)
+    }
+    #[inline(always)]
+    fn to_int_wrapping(self) -> I8 {
+        // Exact for |x| < 2³¹; other lanes (rare) take `as i64 as i32`.
+        let t = unsafe { _mm256_cvttps_epi32(self.0) };
+        let off = unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(t, _mm256_set1_epi32(i32::MIN)))) };
+        if off == 0 {
+            return I8(t);
+        }
+        let (x, mut out) = (self.to_array(), I8(t).to_array());
+        for k in 0..8 {
+            out[k] = x[k] as i64 as i32;
+        }
+        I8::from_array(out)
+    }
+    #[inline(always)]
+    fn from_int(i: I8) -> Self {
+        X8(unsafe { _mm256_cvtepi32_ps(i.0) })
+    }
+    #[inline(always)]
+    fn gather(table: &[f32], idx: I8) -> Self {
+        let i = idx.to_array();
+        let mut out = [0f32; 8];
+        for k in 0..8 {
+            out[k] = table[i[k] as usize];
+        }
+        X8::from_array(out)
+    }
+}
+
+impl BatchLanes for X8 {
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        let out = &mut out[..8];
+        unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) }
+    }
+    #[inline(always)]
+    fn iota() -> I8 {
+        I8(unsafe { _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7) })
+    }
+    #[inline(always)]
+    fn store_int(v: I8, out: &mut [i32]) {
+        let out = &mut out[..8];
+        unsafe { _mm256_storeu_si256(out.as_mut_ptr().cast(), v.0) }
+    }
+    #[inline(always)]
+    fn to_bits(self) -> I8 {
+        I8(unsafe { _mm256_castps_si256(self.0) })
+    }
+    #[inline(always)]
+    fn from_bits(i: I8) -> Self {
+        X8(unsafe { _mm256_castsi256_ps(i.0) })
+    }
+    #[inline(always)]
+    fn load_int(v: &[i32]) -> I8 {
+        let v = &v[..8];
+        I8(unsafe { _mm256_loadu_si256(v.as_ptr().cast()) })
+    }
+}
+
+macro_rules! int_op {
+    ($f:ident, $intr:ident) => {
+        #[inline(always)]
+        fn $f(self, o: Self) -> Self {
+            I8(unsafe { $intr(self.0, o.0) })
+        }
+    };
+}
+
+impl IntLanes for I8 {
+    type Mask = M8;
+    #[inline(always)]
+    fn splat(x: i32) -> Self {
+        I8(unsafe { _mm256_set1_epi32(x) })
+    }
+    #[inline(always)]
+    fn lane(self, k: usize) -> i32 {
+        self.to_array()[k]
+    }
+    int_op!(add, _mm256_add_epi32);
+    int_op!(sub, _mm256_sub_epi32);
+    int_op!(mul, _mm256_mullo_epi32);
+    int_op!(and, _mm256_and_si256);
+    int_op!(or, _mm256_or_si256);
+    int_op!(xor, _mm256_xor_si256);
+    #[inline(always)]
+    fn shl(self, s: u32) -> Self {
+        if s >= 32 {
+            return Self::splat(0);
+        }
+        I8(unsafe { _mm256_sll_epi32(self.0, _mm_cvtsi32_si128(s as i32)) })
+    }
+    #[inline(always)]
+    fn shr(self, s: u32) -> Self {
+        if s >= 32 {
+            return Self::splat(0);
+        }
+        I8(unsafe { _mm256_srl_epi32(self.0, _mm_cvtsi32_si128(s as i32)) })
+    }
+    #[inline(always)]
+    fn rem_euclid(self, m: i32) -> Self {
+        let mut a = self.to_array();
+        for v in a.iter_mut() {
+            *v = v.rem_euclid(m);
+        }
+        I8::from_array(a)
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> M8 {
+        M8(unsafe { _mm256_cmpeq_epi32(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> M8 {
+        M8(unsafe { _mm256_cmpgt_epi32(o.0, self.0) })
+    }
+    #[inline(always)]
+    fn select(m: M8, a: Self, b: Self) -> Self {
+        I8(unsafe { _mm256_blendv_epi8(b.0, a.0, m.0) })
+    }
+    #[inline(always)]
+    fn gather_u8(table: &[u8], idx: Self) -> Self {
+        let i = idx.to_array();
+        let mut out = [0i32; 8];
+        for k in 0..8 {
+            out[k] = table[i[k] as usize] as i32;
+        }
+        I8::from_array(out)
+    }
+    #[inline(always)]
+    fn gather_i32(table: &[i32], idx: Self) -> Self {
+        let i = idx.to_array();
+        let mut out = [0i32; 8];
+        for k in 0..8 {
+            out[k] = table[i[k] as usize];
+        }
+        I8::from_array(out)
+    }
+}

@@ -1,0 +1,320 @@
+//! Sixteen lanes in AVX-512 registers: the lane type of the AVX-512 batch
+//! clones.
+//!
+//! Written with `core::arch` intrinsics rather than as arrays so that LLVM
+//! sees one vector value per operation (with arrays it sometimes vectorises
+//! across corners instead, with gathers and scatters). Each operation is the
+//! IEEE-754 operation the scalar `f32` path performs, lane by lane.
+//!
+//! The types are crate-private and only ever instantiated inside functions
+//! compiled with `#[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl")]`
+//! that the batch drivers call after detecting those features (`grid.rs`):
+//! that is what makes the `unsafe` intrinsic calls below sound.
+
+use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, F32x16};
+use core::arch::x86_64::*;
+use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// Sixteen `f32` lanes in a `zmm` register.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct X16(__m512);
+
+/// Sixteen `i32` lanes in a `zmm` register.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct I16(__m512i);
+
+/// Sixteen lane masks in a mask register.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct M16(__mmask16);
+
+impl Sealed for X16 {}
+impl Sealed for I16 {}
+
+impl X16 {
+    #[inline(always)]
+    fn to_array(self) -> [f32; 16] {
+        let mut a = [0f32; 16];
+        // SAFETY: AVX-512F is enabled wherever X16 exists (module docs).
+        unsafe { _mm512_storeu_ps(a.as_mut_ptr(), self.0) };
+        a
+    }
+    #[inline(always)]
+    fn from_array(a: [f32; 16]) -> Self {
+        // SAFETY: as above.
+        X16(unsafe { _mm512_loadu_ps(a.as_ptr()) })
+    }
+}
+
+impl I16 {
+    #[inline(always)]
+    fn to_array(self) -> [i32; 16] {
+        let mut a = [0i32; 16];
+        // SAFETY: as above.
+        unsafe { _mm512_storeu_si512(a.as_mut_ptr().cast(), self.0) };
+        a
+    }
+    #[inline(always)]
+    fn from_array(a: [i32; 16]) -> Self {
+        // SAFETY: as above.
+        I16(unsafe { _mm512_loadu_si512(a.as_ptr().cast()) })
+    }
+}
+
+macro_rules! float_op {
+    ($tr:ident, $f:ident, $intr:ident) => {
+        impl $tr for X16 {
+            type Output = X16;
+            #[inline(always)]
+            fn $f(self, o: X16) -> X16 {
+                // SAFETY: AVX-512F (module docs).
+                X16(unsafe { $intr(self.0, o.0) })
+            }
+        }
+    };
+}
+float_op!(Add, add, _mm512_add_ps);
+float_op!(Sub, sub, _mm512_sub_ps);
+float_op!(Mul, mul, _mm512_mul_ps);
+float_op!(Div, div, _mm512_div_ps);
+
+impl Neg for X16 {
+    type Output = X16;
+    #[inline(always)]
+    fn neg(self) -> X16 {
+        // SAFETY: AVX-512F/DQ (module docs). Negation flips the sign bit.
+        X16(unsafe { _mm512_xor_ps(self.0, _mm512_set1_ps(-0.0)) })
+    }
+}
+
+impl BitAnd for M16 {
+    type Output = M16;
+    #[inline(always)]
+    fn bitand(self, o: M16) -> M16 {
+        M16(self.0 & o.0)
+    }
+}
+impl BitOr for M16 {
+    type Output = M16;
+    #[inline(always)]
+    fn bitor(self, o: M16) -> M16 {
+        M16(self.0 | o.0)
+    }
+}
+impl Not for M16 {
+    type Output = M16;
+    #[inline(always)]
+    fn not(self) -> M16 {
+        M16(!self.0)
+    }
+}
+
+// SAFETY (every `unsafe` block below): AVX-512 F/BW/DQ/VL are enabled
+// wherever these types exist (module docs); loads and stores go through
+// slices of at least sixteen elements, checked by indexing.
+impl Lanes for X16 {
+    type Elem = f32;
+    type Int = I16;
+    type Mask = M16;
+    const WIDTH: usize = 16;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        X16(unsafe { _mm512_set1_ps(x) })
+    }
+    #[inline(always)]
+    fn from_slice(v: &[f32]) -> Self {
+        let v = &v[..16];
+        X16(unsafe { _mm512_loadu_ps(v.as_ptr()) })
+    }
+    #[inline(always)]
+    fn lane(self, k: usize) -> f32 {
+        self.to_array()[k]
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        // Round toward −∞, no precision exception: floorf lane by lane.
+        X16(unsafe { _mm512_roundscale_ps::<0x09>(self.0) })
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        X16(unsafe { _mm512_andnot_ps(_mm512_set1_ps(-0.0), self.0) })
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        X16(unsafe { _mm512_sqrt_ps(self.0) })
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        // minps(a, b) = a < b ? a : b, the scalar `if o < self { o } else { self }`.
+        X16(unsafe { _mm512_min_ps(o.0, self.0) })
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        X16(unsafe { _mm512_max_ps(o.0, self.0) })
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> M16 {
+        M16(unsafe { _mm512_cmp_ps_mask::<_CMP_LT_OQ>(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> M16 {
+        M16(unsafe { _mm512_cmp_ps_mask::<_CMP_LE_OQ>(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn select(m: M16, a: Self, b: Self) -> Self {
+        X16(unsafe { _mm512_mask_blend_ps(m.0, b.0, a.0) })
+    }
+    #[inline(always)]
+    fn any(m: M16) -> bool {
+        m.0 != 0
+    }
+    #[inline(always)]
+    fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self {
+        X16::from_array(noise.sample_x16(p.map(|c| F32x16(c.to_array()))).0)
+    }
+    #[inline(always)]
+    fn powf(self, e: Self) -> Self {
+        let (a, b) = (self.to_array(), e.to_array());
+        let mut out = [0f32; 16];
+        for k in 0..16 {
+            out[k] = libm::powf(a[k], b[k]);
+        }
+        X16::from_array(out)
+    }
+    #[inline(always)]
+    fn to_int_wrapping(self) -> I16 {
+        // Exact for |x| < 2³¹; other lanes (rare) take `as i64 as i32`.
+        let t = unsafe { _mm512_cvttps_epi32(self.0) };
+        let off = unsafe { _mm512_cmpeq_epi32_mask(t, _mm512_set1_epi32(i32::MIN)) };
+        if off == 0 {
+            return I16(t);
+        }
+        let (x, mut out) = (self.to_array(), I16(t).to_array());
+        for k in 0..16 {
+            out[k] = x[k] as i64 as i32;
+        }
+        I16::from_array(out)
+    }
+    #[inline(always)]
+    fn from_int(i: I16) -> Self {
+        X16(unsafe { _mm512_cvtepi32_ps(i.0) })
+    }
+    #[inline(always)]
+    fn gather(table: &[f32], idx: I16) -> Self {
+        let i = idx.to_array();
+        let mut out = [0f32; 16];
+        for k in 0..16 {
+            out[k] = table[i[k] as usize];
+        }
+        X16::from_array(out)
+    }
+}
+
+impl BatchLanes for X16 {
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        let out = &mut out[..16];
+        unsafe { _mm512_storeu_ps(out.as_mut_ptr(), self.0) }
+    }
+    #[inline(always)]
+    fn iota() -> I16 {
+        I16(unsafe { _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) })
+    }
+    #[inline(always)]
+    fn store_int(v: I16, out: &mut [i32]) {
+        let out = &mut out[..16];
+        unsafe { _mm512_storeu_si512(out.as_mut_ptr().cast(), v.0) }
+    }
+    #[inline(always)]
+    fn to_bits(self) -> I16 {
+        I16(unsafe { _mm512_castps_si512(self.0) })
+    }
+    #[inline(always)]
+    fn from_bits(i: I16) -> Self {
+        X16(unsafe { _mm512_castsi512_ps(i.0) })
+    }
+    #[inline(always)]
+    fn load_int(v: &[i32]) -> I16 {
+        let v = &v[..16];
+        I16(unsafe { _mm512_loadu_si512(v.as_ptr().cast()) })
+    }
+}
+
+macro_rules! int_op {
+    ($f:ident, $intr:ident) => {
+        #[inline(always)]
+        fn $f(self, o: Self) -> Self {
+            I16(unsafe { $intr(self.0, o.0) })
+        }
+    };
+}
+
+impl IntLanes for I16 {
+    type Mask = M16;
+    #[inline(always)]
+    fn splat(x: i32) -> Self {
+        I16(unsafe { _mm512_set1_epi32(x) })
+    }
+    #[inline(always)]
+    fn lane(self, k: usize) -> i32 {
+        self.to_array()[k]
+    }
+    int_op!(add, _mm512_add_epi32);
+    int_op!(sub, _mm512_sub_epi32);
+    int_op!(mul, _mm512_mullo_epi32);
+    int_op!(and, _mm512_and_si512);
+    int_op!(or, _mm512_or_si512);
+    int_op!(xor, _mm512_xor_si512);
+    #[inline(always)]
+    fn shl(self, s: u32) -> Self {
+        if s >= 32 {
+            return Self::splat(0);
+        }
+        I16(unsafe { _mm512_sll_epi32(self.0, _mm_cvtsi32_si128(s as i32)) })
+    }
+    #[inline(always)]
+    fn shr(self, s: u32) -> Self {
+        if s >= 32 {
+            return Self::splat(0);
+        }
+        I16(unsafe { _mm512_srl_epi32(self.0, _mm_cvtsi32_si128(s as i32)) })
+    }
+    #[inline(always)]
+    fn rem_euclid(self, m: i32) -> Self {
+        let mut a = self.to_array();
+        for v in a.iter_mut() {
+            *v = v.rem_euclid(m);
+        }
+        I16::from_array(a)
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> M16 {
+        M16(unsafe { _mm512_cmpeq_epi32_mask(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> M16 {
+        M16(unsafe { _mm512_cmplt_epi32_mask(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn select(m: M16, a: Self, b: Self) -> Self {
+        I16(unsafe { _mm512_mask_blend_epi32(m.0, b.0, a.0) })
+    }
+    #[inline(always)]
+    fn gather_u8(table: &[u8], idx: Self) -> Self {
+        let i = idx.to_array();
+        let mut out = [0i32; 16];
+        for k in 0..16 {
+            out[k] = table[i[k] as usize] as i32;
+        }
+        I16::from_array(out)
+    }
+    #[inline(always)]
+    fn gather_i32(table: &[i32], idx: Self) -> Self {
+        let i = idx.to_array();
+        let mut out = [0i32; 16];
+        for k in 0..16 {
+            out[k] = table[i[k] as usize];
+        }
+        I16::from_array(out)
+    }
+}
