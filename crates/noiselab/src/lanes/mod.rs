@@ -11,9 +11,10 @@
 //! Integer lanes ([`IntLanes`]) carry lattice coordinates and hashes. They are
 //! 32-bit and wrap on overflow in every build profile.
 
-#[cfg(target_arch = "x86_64")]
+// Used only by the batch drivers, which dispatch at run time with `std`.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
 pub(crate) mod avx2;
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
 pub(crate) mod avx512;
 mod scalar;
 mod wide;
