@@ -274,7 +274,9 @@ pub enum SimdLevel {
     Baseline,
     /// AVX2 (x86-64), eight lanes. Never FMA: results stay bit-identical.
     Avx2,
-    /// AVX-512 F, BW, DQ and VL (x86-64), sixteen lanes.
+    /// AVX-512 F, BW, DQ, VL and VBMI (x86-64: Ice Lake, Zen 4 and later),
+    /// sixteen lanes. (Earlier AVX-512 CPUs, without VBMI's byte permutes
+    /// for table lookups, run the AVX2 level.)
     Avx512,
 }
 
@@ -289,7 +291,7 @@ impl SimdLevel {
             if has!("avx2") {
                 v.push(SimdLevel::Avx2);
             }
-            if has!("avx512f") && has!("avx512bw") && has!("avx512dq") && has!("avx512vl") {
+            if has!("avx512f") && has!("avx512bw") && has!("avx512dq") && has!("avx512vl") && has!("avx512vbmi") {
                 v.push(SimdLevel::Avx512);
             }
         }
@@ -411,7 +413,7 @@ macro_rules! dispatcher {
         fn $name<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, $($arg: $ty),*) {
             #[cfg(all(feature = "std", target_arch = "x86_64"))]
             {
-                #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl")]
+                #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
                 unsafe fn avx512<N: Noise<D>, const D: usize>(noise: &N, $($arg: $ty),*) {
                     $body::<N, crate::lanes::avx512::X16, D>(noise, $($arg),*)
                 }

@@ -1,7 +1,7 @@
 //! Lattice hashing shared by the kinds: Perlin's permutation tables and a
 //! table-free integer hash.
 
-use crate::lanes::IntLanes;
+use crate::lanes::{IntLanes, Table256};
 use alloc::sync::Arc;
 
 /// Perlin's reference permutation of 0..=255 (Improving Noise, 2002; also used
@@ -27,7 +27,13 @@ pub const PERLIN_PERMUTATION: [u8; 256] = [
 /// drawn from a SplitMix64 stream seeded by the seed. Cheap to clone (shared).
 #[derive(Clone, Debug)]
 pub struct Permutation {
-    table: Arc<[u8; 512]>,
+    tables: Arc<Tables>,
+}
+
+#[derive(Debug)]
+struct Tables {
+    doubled: [u8; 512],
+    lookup: Table256,
 }
 
 impl Permutation {
@@ -46,22 +52,29 @@ impl Permutation {
 
     /// A permutation from an explicit table (must be a permutation of 0..=255).
     pub fn from_table(p: &[u8; 256]) -> Self {
-        let mut t = [0u8; 512];
-        t[..256].copy_from_slice(p);
-        t[256..].copy_from_slice(p);
-        Permutation { table: Arc::new(t) }
+        let mut doubled = [0u8; 512];
+        doubled[..256].copy_from_slice(p);
+        doubled[256..].copy_from_slice(p);
+        Permutation { tables: Arc::new(Tables { doubled, lookup: Table256(*p) }) }
     }
 
     /// The doubled table.
     #[inline(always)]
     pub fn table(&self) -> &[u8; 512] {
-        &self.table
+        &self.tables.doubled
     }
 
-    /// `p[i]` per lane, for `0 ≤ i < 512`.
+    /// The 256 entries, for table lookups in lanes.
+    #[inline(always)]
+    pub fn entries(&self) -> &Table256 {
+        &self.tables.lookup
+    }
+
+    /// `p[i]` per lane, for `0 ≤ i < 512` (the doubled table's range: the
+    /// lookup reads `p[i & 255]`, the same entry).
     #[inline(always)]
     pub fn at<I: IntLanes>(&self, i: I) -> I {
-        I::gather_u8(&self.table[..], i)
+        I::lookup256(&self.tables.lookup, i)
     }
 }
 

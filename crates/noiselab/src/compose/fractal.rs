@@ -6,8 +6,10 @@
 use alloc::vec::Vec;
 
 use super::ComposeError;
-use crate::lanes::Lanes;
+use crate::grid::{store_prefix, Axes, RowPiece, Span};
+use crate::lanes::{BatchLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
+use alloc::vec;
 
 /// How octaves combine. `nᵢ` is octave i's noise at `lacunarityⁱ·p`, `aᵢ =
 /// gainⁱ` its amplitude and `A = Σ aᵢ`; every sum is divided by `A`, so the
@@ -257,15 +259,15 @@ impl<N> Fractal<N> {
         self.mode
     }
 
-    /// The octave loop, over any [`Arith`]: `octave(i, frequency)` gives
-    /// octave i's noise (value or value + gradient).
+    /// The octave loop, over any [`Arith`]: `octaves.octave(i, frequency)`
+    /// gives octave i's noise (value or value + gradient).
     #[inline(always)]
-    fn combine<T: Arith>(&self, mut octave: impl FnMut(usize, f64) -> T) -> T {
+    fn combine<T: Arith>(&self, octaves: &impl Octaves<T>) -> T {
         let (mut amplitude, mut frequency, mut total) = (1.0, 1.0, 0.0);
         let mut sum = T::cst(0.0);
         let mut weight = T::cst(1.0);
         for i in 0..self.octaves.len() {
-            let n = octave(i, frequency);
+            let n = octaves.octave(i, frequency);
             let term = match self.mode {
                 FractalMode::Fbm => n,
                 FractalMode::Turbulence => n.abs(),
@@ -303,6 +305,13 @@ impl<N> Fractal<N> {
     }
 }
 
+/// Where the octave loop finds octave i's noise. (A trait, not a closure:
+/// a closure LLVM declines to inline would run outside the batch driver's
+/// instruction-set clone.)
+trait Octaves<T> {
+    fn octave(&self, i: usize, frequency: f64) -> T;
+}
+
 /// An octave whose scaled point overflows (|p| near the float limit) is
 /// NaN; it contributes 0 instead, so finite input stays finite. NaN input
 /// gives NaN (checked on the result).
@@ -311,22 +320,139 @@ fn finite_or_zero<L: Lanes>(v: L) -> L {
     L::select(crate::kinds::is_finite(v), v, L::cst(0.0))
 }
 
+/// Each octave evaluated at the point.
+struct AtPoint<'a, N, L, const D: usize> {
+    noises: &'a [N],
+    p: [L; D],
+}
+
+impl<N: Noise<D>, L: Lanes, const D: usize> Octaves<L> for AtPoint<'_, N, L, D> {
+    #[inline(always)]
+    fn octave(&self, i: usize, frequency: f64) -> L {
+        let mut q = self.p;
+        for c in q.iter_mut() {
+            *c = *c * L::cst(frequency);
+        }
+        finite_or_zero(self.noises[i].sample(q))
+    }
+}
+
+/// Each octave's value and gradient at the point.
+struct GradientAtPoint<'a, N, L, const D: usize> {
+    noises: &'a [N],
+    p: [L; D],
+}
+
+impl<N: NoiseGradient<D>, L: Lanes, const D: usize> Octaves<Dual<L, D>> for GradientAtPoint<'_, N, L, D> {
+    #[inline(always)]
+    fn octave(&self, i: usize, frequency: f64) -> Dual<L, D> {
+        let mut q = self.p;
+        for c in q.iter_mut() {
+            *c = *c * L::cst(frequency);
+        }
+        let (v, g) = self.noises[i].sample_gradient(q);
+        let mut d = g;
+        for k in 0..D {
+            d[k] = finite_or_zero(g[k] * L::cst(frequency));
+        }
+        Dual { v: finite_or_zero(v), d }
+    }
+}
+
+/// Octave values already filled for a chunk of a grid: buffer i holds
+/// octave i, the chunk starts at `at`.
+struct Filled<'a> {
+    buffers: &'a [Vec<f32>],
+    at: usize,
+}
+
+impl<B: BatchLanes> Octaves<B> for Filled<'_> {
+    #[inline(always)]
+    fn octave(&self, i: usize, _frequency: f64) -> B {
+        finite_or_zero(B::from_slice(&self.buffers[i][self.at..]))
+    }
+}
+
+/// Points per block of the grid fill: the octaves of a block are filled
+/// one after another, then combined (the buffers stay in cache).
+const BLOCK: usize = 1 << 16;
+
 impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
-        let v = self.combine(|i, f| finite_or_zero(self.octaves[i].sample(p.map(|c| c * L::cst(f)))));
+        let v = self.combine(&AtPoint { noises: &self.octaves, p });
         crate::kinds::finite_or_nan(p, v)
     }
+
+    /// Octave by octave: each octave fills the block through its own grid
+    /// path at the scaled coordinates (the same `f32` products a point
+    /// evaluation forms), then the octave loop combines the values, point
+    /// by point in the same order: the bits of [`Noise::get_f32`].
+    #[inline(always)]
+    fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
+        let w = B::WIDTH;
+        let nx = span.axes.size(0).max(1);
+        let mut frequency = 1.0;
+        let scaled: Vec<Axes<D>> = (0..self.octaves.len())
+            .map(|_| {
+                let a = span.axes.scaled(frequency as f32);
+                frequency *= self.lacunarity;
+                a
+            })
+            .collect();
+        // Whole rows per block where rows are short, so octaves see whole rows.
+        let block = if nx < BLOCK { BLOCK / nx * nx } else { BLOCK };
+        let mut buffers: Vec<Vec<f32>> = (0..self.octaves.len()).map(|_| vec![0.0; block + w]).collect();
+        let mut done = 0;
+        while done < out.len() {
+            let len = block.min(out.len() - done);
+            let start = span.start + done;
+            for (i, noise) in self.octaves.iter().enumerate() {
+                noise.fill_span::<B>(Span { axes: &scaled[i], start, accuracy: span.accuracy }, &mut buffers[i][..len]);
+            }
+            let part = Span { axes: span.axes, start, accuracy: span.accuracy };
+            let xs = span.axes.axis(0);
+            for RowPiece { row, first, offset, len: n } in part.rows(len) {
+                let idx = span.axes.row_indices(row);
+                let mut p = [B::cst(0.0); D];
+                for d in 1..D {
+                    p[d] = B::splat(span.axes.axis(d)[idx[d]]);
+                }
+                let mut k = 0;
+                while k < n {
+                    let at = offset + k;
+                    p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
+                    // NaN where any coordinate is not finite, as point evaluation.
+                    let v = crate::kinds::finite_or_nan(p, self.combine(&Filled { buffers: &buffers, at }));
+                    let count = (n - k).min(w);
+                    store_prefix(v, &mut out[done + at..done + at + count]);
+                    k += w;
+                }
+            }
+            done += len;
+        }
+    }
+}
+
+/// Lanes from up to WIDTH values, the last repeated.
+#[inline(always)]
+fn pad<B: BatchLanes>(v: &[f32]) -> B {
+    let mut lanes = [0f32; 16];
+    for (j, x) in lanes.iter_mut().enumerate().take(B::WIDTH) {
+        *x = v[j.min(v.len() - 1)];
+    }
+    B::from_slice(&lanes)
 }
 
 /// Analytic derivatives through every mode, where the base has them.
 impl<N: NoiseGradient<D>, const D: usize> NoiseGradient<D> for Fractal<N> {
     #[inline(always)]
     fn sample_gradient<L: Lanes>(&self, p: [L; D]) -> (L, [L; D]) {
-        let d = self.combine(|i, f| {
-            let (v, g) = self.octaves[i].sample_gradient(p.map(|c| c * L::cst(f)));
-            Dual { v: finite_or_zero(v), d: g.map(|c| finite_or_zero(c * L::cst(f))) }
-        });
-        (crate::kinds::finite_or_nan(p, d.v), d.d.map(|g| crate::kinds::finite_or_nan(p, g)))
+        let d = self.combine(&GradientAtPoint { noises: &self.octaves, p });
+        let mut g = d.d;
+        for c in g.iter_mut() {
+            *c = crate::kinds::finite_or_nan(p, *c);
+        }
+        (crate::kinds::finite_or_nan(p, d.v), g)
     }
 }

@@ -4,7 +4,7 @@
 //! The tables are built in Rust exactly as the C `init()` builds them from
 //! glibc's `random()`, so no libc and no table file are needed.
 
-use super::lattice::{self, Corner, Lattice};
+use super::lattice::{self, Corner, Fields, Lattice};
 use super::{corner_bit, Period, PeriodError, MAX_CORNERS};
 use crate::grid::Span;
 use crate::lanes::{math::sqrt64, BatchLanes, Elem, IntLanes, Lanes};
@@ -195,8 +195,8 @@ impl Classic {
 }
 
 impl<const D: usize> Lattice<D> for Classic {
-    const FLOATS: usize = D;
-    const INTS: usize = 0;
+    const HASHED: Fields = Fields { floats: D, ints: 0 };
+    const BOUND: Fields = Fields { floats: D, ints: 0 };
 
     /// As the C `setup`: `t = x + 4096` is formed first (quantising f32
     /// positions), the cell is `⌊t⌋` and the position `t − ⌊t⌋`.

@@ -5,7 +5,7 @@
 //! defined as the zero slices of 3D: `n2(x, y) == n3(x, y, 0)` and
 //! `n1(x) == n3(x, 0, 0)` as values (the sign of a zero may differ).
 
-use super::lattice::{self, Corner, Lattice};
+use super::lattice::{self, Corner, Fields, Lattice};
 use super::{fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
 use crate::grid::Span;
 use crate::hash::Permutation;
@@ -99,41 +99,57 @@ impl Improved {
         }
     }
 
-    /// Perlin's 3D `grad(hash, x, y, z)` picks two distinct axes u and v and
-    /// returns ±u ± v. Per axis: whether it is picked, and whether negated
-    /// (bit 0 negates u, bit 1 negates v).
-    #[inline(always)]
-    fn picks<L: Lanes>(&self, hash: L::Int) -> [(L::Mask, L::Mask); 3] {
-        let h = hash.and_c(15);
-        let (below4, below8) = (h.lt(L::Int::splat(4)), h.lt(L::Int::splat(8)));
-        let (is12, is13, is14) = (h.eq(L::Int::splat(12)), h.eq(L::Int::splat(13)), h.eq(L::Int::splat(14)));
-        let (neg_u, neg_v) = (h.bit(0), h.bit(1));
-        let (u_is_x, v_is_y, v_is_x) = match self.variant {
-            ImprovedVariant::Current => (below8, below4, !below4 & (is12 | is14)),
-            ImprovedVariant::Original2002 => {
-                let both = is12 | is13;
-                // v is never x: `both & !both` is the all-false mask.
-                (below8 | both, below4 | both, both & !both)
-            }
-        };
-        // An axis picked as u or as v, negated by u's bit or v's.
-        let x = (u_is_x | v_is_x, (u_is_x & neg_u) | (!u_is_x & neg_v));
-        let y = (!u_is_x | v_is_y, (!u_is_x & neg_u) | (u_is_x & neg_v));
-        [x, y, (!(v_is_y | v_is_x), neg_v)]
-    }
 }
 
-/// `a` negated where `neg`, or −0 (the additive identity) where the axis is
-/// not picked: summing these over the axes in any order gives Perlin's
-/// `±u ± v` bit for bit.
+/// Perlin's 3D `grad(hash, x, y, z)` as coefficients: for hash h (low four
+/// bits) it picks two distinct axes u and v and returns ±u ± v, bit 0
+/// negating u and bit 1 v. Entry `[axis][h]` is that axis's coefficient:
+/// +1, −1, or 0 where the axis is not picked.
+const fn gradient_table(variant: ImprovedVariant) -> [[f32; 16]; 3] {
+    let mut table = [[0.0; 16]; 3];
+    let mut h = 0;
+    while h < 16 {
+        let (u, v) = match variant {
+            ImprovedVariant::Current => (
+                if h < 8 { 0 } else { 1 },
+                if h < 4 {
+                    1
+                } else if h == 12 || h == 14 {
+                    0
+                } else {
+                    2
+                },
+            ),
+            ImprovedVariant::Original2002 => (
+                if h < 8 || h == 12 || h == 13 { 0 } else { 1 },
+                if h < 4 || h == 12 || h == 13 { 1 } else { 2 },
+            ),
+        };
+        table[u][h] = if h & 1 == 0 { 1.0 } else { -1.0 };
+        table[v][h] = if h & 2 == 0 { 1.0 } else { -1.0 };
+        h += 1;
+    }
+    table
+}
+
+/// [`gradient_table`] for each variant.
+const GRADIENTS: [[[f32; 16]; 3]; 2] =
+    [gradient_table(ImprovedVariant::Current), gradient_table(ImprovedVariant::Original2002)];
+
+/// Offset `a` times its coefficient `c`, or −0 (the additive identity)
+/// where the axis is not picked (`c` = 0): summing these over the axes in
+/// any order gives Perlin's `±u ± v` bit for bit (`a·±1` is exactly `±a`).
 #[inline(always)]
-fn pick<L: Lanes>(a: L, (picked, neg): (L::Mask, L::Mask)) -> L {
-    L::select(picked, L::select(neg, -a, a), L::cst(-0.0))
+fn pick<L: Lanes>(a: L, c: L) -> L {
+    L::select(L::cst(0.0).lt(c.abs()), a * c, L::cst(-0.0))
 }
 
 impl<const D: usize> Lattice<D> for Improved {
-    const FLOATS: usize = if D == 4 { 3 } else { 2 };
-    const INTS: usize = 1;
+    /// The hash.
+    const HASHED: Fields = Fields { floats: 0, ints: 1 };
+    /// 1D–3D: axis 0's coefficient and the other axes' terms; 4D: the
+    /// offsets of axes 1..3 and the hash.
+    const BOUND: Fields = if D == 4 { Fields { floats: 3, ints: 1 } } else { Fields { floats: 2, ints: 0 } };
 
     #[inline(always)]
     fn fade<L: Lanes>(&self, t: L) -> L {
@@ -176,9 +192,9 @@ impl<const D: usize> Lattice<D> for Improved {
         out
     }
 
-    /// 1D–3D: the terms of axes 1.. summed (`f[1]`), axis 0's sign as ±1
-    /// (`f[0]`) and whether it is picked (`i[0]`). 4D (whose three terms are
-    /// summed in a hash-dependent order): the hash and the offsets.
+    /// 1D–3D: axis 0's coefficient (`f[0]`) and the terms of axes 1..
+    /// summed (`f[1]`). 4D (whose three terms are summed in a
+    /// hash-dependent order): the hash and the offsets.
     #[inline(always)]
     fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L> {
         let mut at = [L::cst(0.0); 4];
@@ -188,10 +204,10 @@ impl<const D: usize> Lattice<D> for Improved {
             b.i[0] = corner.i[0];
             b.f[..3].copy_from_slice(&at[1..]);
         } else {
-            let [x, y, z] = self.picks::<L>(corner.i[0]);
-            b.f[0] = L::select(x.1, L::cst(-1.0), L::cst(1.0));
-            b.f[1] = pick(at[1], y) + pick(at[2], z);
-            b.i[0] = L::Int::select(x.0, L::Int::splat(-1), L::Int::splat(0));
+            let [cx, cy, cz] = &GRADIENTS[self.variant as usize];
+            let h = corner.i[0];
+            b.f[0] = L::lookup16(cx, h);
+            b.f[1] = pick(at[1], L::lookup16(cy, h)) + pick(at[2], L::lookup16(cz, h));
         }
         b
     }
@@ -201,8 +217,7 @@ impl<const D: usize> Lattice<D> for Improved {
         if D == 4 {
             Self::grad4(b.i[0], x, b.f[0], b.f[1], b.f[2])
         } else {
-            let picked = b.i[0].lt(L::Int::splat(0));
-            L::select(picked, x * b.f[0] + b.f[1], b.f[1])
+            L::select(L::cst(0.0).lt(b.f[0].abs()), x * b.f[0] + b.f[1], b.f[1])
         }
     }
 }

@@ -29,6 +29,20 @@ use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use alloc::vec;
 use alloc::vec::Vec;
 
+/// How many float and integer fields of a [`Corner`] are in use.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fields {
+    pub floats: usize,
+    pub ints: usize,
+}
+
+impl Fields {
+    /// Fields in all.
+    const fn total(self) -> usize {
+        self.floats + self.ints
+    }
+}
+
 /// What a corner contributes, in whatever form a kind needs: up to four
 /// floats and two integers per lane (unused fields stay zero and cost
 /// nothing after inlining).
@@ -57,11 +71,11 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
         (fl.to_int_wrapping(), x - fl)
     }
 
-    /// How many of [`Corner`]'s float and integer fields the kind's records
-    /// use (the grid fill stores and moves only these).
-    const FLOATS: usize;
-    /// See [`Lattice::FLOATS`].
-    const INTS: usize;
+    /// How many of [`Corner`]'s fields [`Lattice::corners`]' records use
+    /// (the grid fill stores and moves only these).
+    const HASHED: Fields;
+    /// How many of [`Corner`]'s fields [`Lattice::bind`]'s records use.
+    const BOUND: Fields;
 
     /// The blend weight of a position inside a cell.
     fn fade<L: Lanes>(&self, t: L) -> L;
@@ -187,49 +201,42 @@ pub(crate) fn sample_gradient<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K,
     (finish(kind, value), scaled)
 }
 
-/// Cells' records in blocks of sixteen, field-major within a block (field
-/// k of cell 16b + j at `[(b·fields + k)·16 + j]`): a block of cells loads
-/// and stores as lanes, and one cell's field is one indexed load. Integer
-/// fields are stored as their bits.
-struct Blocks {
-    fields: usize,
+/// Cells' records field by field: field k of cell c at `[k·stride + c]`,
+/// so consecutive cells load and store as lanes. Integer fields are stored
+/// as their bits.
+struct Columns {
+    stride: usize,
     data: Vec<f32>,
 }
 
-impl Blocks {
+impl Columns {
+    /// Room for `fields` fields of `cells` cells.
     fn new(fields: usize, cells: usize) -> Self {
-        Blocks { fields, data: vec![0.0; cells.div_ceil(16) * fields * 16] }
+        Columns { stride: cells, data: vec![0.0; fields * cells] }
     }
 
-    #[inline(always)]
-    fn at(&self, field: usize, cell: usize) -> usize {
-        ((cell >> 4) * self.fields + field) * 16 + (cell & 15)
-    }
-
-    /// Field `field` of cells `cell..cell + WIDTH` (`cell` a multiple of WIDTH).
+    /// Field `field` of cells `cell..cell + WIDTH`.
     #[inline(always)]
     fn load<B: BatchLanes>(&self, field: usize, cell: usize) -> B {
-        B::from_slice(&self.data[self.at(field, cell)..])
+        B::from_slice(&self.data[field * self.stride + cell..])
     }
 
     #[inline(always)]
     fn store<B: BatchLanes>(&mut self, field: usize, cell: usize, v: B) {
-        let at = self.at(field, cell);
-        v.store(&mut self.data[at..]);
+        v.store(&mut self.data[field * self.stride + cell..]);
     }
 
-}
-
-/// Fields per corner in a record.
-#[inline(always)]
-const fn fields<K: Lattice<D>, const D: usize>() -> usize {
-    K::FLOATS + K::INTS
-}
-
-/// Fields per cell: every corner's, floats then integers.
-#[inline(always)]
-const fn cell_fields<K: Lattice<D>, const D: usize>() -> usize {
-    (1 << D) * fields::<K, D>()
+    /// Corner `c`'s record of cells `cell..cell + WIDTH` (`fields` per corner).
+    #[inline(always)]
+    fn store_corner<B: BatchLanes>(&mut self, c: usize, cell: usize, r: &Corner<B>, fields: Fields) {
+        let base = c * fields.total();
+        for m in 0..fields.floats {
+            self.store(base + m, cell, r.f[m]);
+        }
+        for m in 0..fields.ints {
+            self.store(base + fields.floats + m, cell, B::from_bits(r.i[m]));
+        }
+    }
 }
 
 /// Where lanes find their records' fields. (Traits, not closures: a
@@ -239,74 +246,99 @@ trait Source<B: BatchLanes> {
     /// Field `k` (for every lane).
     fn field(&self, k: usize) -> B;
 
-    /// Corner `c`'s record.
+    /// Corner `c`'s record (`fields` per corner).
     #[inline(always)]
-    fn corner<K: Lattice<D>, const D: usize>(&self, c: usize) -> Corner<B> {
-        let base = c * fields::<K, D>();
+    fn corner(&self, c: usize, fields: Fields) -> Corner<B> {
+        let base = c * fields.total();
         let mut r = Corner::zero();
-        for m in 0..K::FLOATS {
+        for m in 0..fields.floats {
             r.f[m] = self.field(base + m);
         }
-        for m in 0..K::INTS {
-            r.i[m] = self.field(base + K::FLOATS + m).to_bits();
+        for m in 0..fields.ints {
+            r.i[m] = self.field(base + fields.floats + m).to_bits();
         }
         r
     }
 }
 
-/// A block of consecutive cells, one per lane.
+/// Consecutive cells from `first`, one per lane.
 struct CellBlock<'a> {
-    blocks: &'a Blocks,
+    columns: &'a Columns,
     first: usize,
 }
 
 impl<B: BatchLanes> Source<B> for CellBlock<'_> {
     #[inline(always)]
     fn field(&self, k: usize) -> B {
-        self.blocks.load(k, self.first)
+        self.columns.load(k, self.first)
     }
 }
 
-/// Every lane in one cell: the cell's fields, sixteen apart from its field 0.
-struct OneCell<'a>(&'a [f32]);
+/// Every lane in one cell: its fields, `stride` apart from its field 0.
+struct OneCell<'a> {
+    from: &'a [f32],
+    stride: usize,
+}
 
 impl<'a> OneCell<'a> {
-    /// The cell whose field 0 is `data[at]`, with `fields` fields.
     #[inline(always)]
-    fn new(data: &'a [f32], at: usize, fields: usize) -> Self {
-        OneCell(&data[at..][..16 * (fields - 1) + 1])
+    fn new(columns: &'a Columns, cell: usize) -> Self {
+        OneCell { from: &columns.data[cell..], stride: columns.stride }
     }
 }
 
 impl<B: BatchLanes> Source<B> for OneCell<'_> {
     #[inline(always)]
     fn field(&self, k: usize) -> B {
-        B::splat(self.0[16 * k])
+        B::splat(self.from[k * self.stride])
     }
 }
 
-/// Lanes in different cells: each lane's field gathered (`at` is each
-/// lane's cell's field 0, as an index into the blocks).
+/// Lanes in up to 2·WIDTH consecutive cells from `first`: each field is
+/// the two registers of those cells' values, permuted by `lane` (each
+/// lane's cell minus `first`).
 struct PerLane<'a, B: BatchLanes> {
-    data: &'a [f32],
-    at: B::Int,
+    columns: &'a Columns,
+    first: usize,
+    lane: B::Int,
 }
 
 impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
     #[inline(always)]
     fn field(&self, k: usize) -> B {
-        B::gather(self.data, self.at.add_c(16 * k as i32))
+        let v = &self.columns.data[k * self.columns.stride + self.first..];
+        B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), self.lane)
+    }
+}
+
+/// The smallest and largest of some cells.
+#[inline(always)]
+fn cell_span(cells: &[i32]) -> (usize, usize) {
+    let (lo, hi) = cells.iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)));
+    (lo as usize, hi as usize)
+}
+
+/// Lanes in any cells, each lane's fields gathered.
+struct Gathered<'a, B: BatchLanes> {
+    columns: &'a Columns,
+    cells: B::Int,
+}
+
+impl<B: BatchLanes> Source<B> for Gathered<'_, B> {
+    #[inline(always)]
+    fn field(&self, k: usize) -> B {
+        B::gather(&self.columns.data[k * self.columns.stride..], self.cells)
     }
 }
 
 /// Lanes' worth of columns in one cell: columns `start..start + WIDTH`, of
 /// which those before `end` are the cell's (the rest belong to later
-/// chunks); the cell's field 0 is `blocks[at]`.
+/// chunks), in cell `cell`.
 #[derive(Clone, Copy)]
 struct Chunk {
     start: usize,
     end: usize,
-    at: usize,
+    cell: usize,
 }
 
 /// The grid fill: corners hashed once per cell and grid plane, bound once
@@ -361,17 +393,18 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         }
     }
     let fast = span.accuracy == Accuracy::Fast;
-    let stride = if fast { 4 } else { cell_fields::<K, D>() };
-    let mut bound = Blocks::new(stride, ncell + w);
-    // Splat a cell's record over whole lanes when runs fill them; gather
+    let fields = if fast { 4 } else { (1 << D) * K::BOUND.total() };
+    // Splat a cell's record over whole lanes when runs fill them; permute
     // per lane when they are short.
-    let long_runs = cols >= runs.len() * w / 2;
+    let long_runs = cols >= runs.len() * w;
+    let ncp = ncell + 3 * w;
+    let mut bound = Columns::new(fields, ncp);
     let mut chunks: Vec<Chunk> = Vec::new();
     let mut chunk_axis: Vec<ChunkAxis> = Vec::new();
     if long_runs {
         for &(start, end, cell) in &runs {
             for s in (start..end).step_by(w) {
-                chunks.push(Chunk { start: s, end, at: bound.at(0, cell) });
+                chunks.push(Chunk { start: s, end, cell });
                 let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
                 a.x[..w].copy_from_slice(&frac0[s..s + w]);
                 a.fade[..w].copy_from_slice(&fade0[s..s + w]);
@@ -379,11 +412,14 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             }
         }
     }
-    // For the per-lane path: each column's cell as an index to its field 0.
+    // For the per-lane path: cells counted from the smallest.
     for (j, c) in cell0[..padded].iter_mut().enumerate() {
-        *c = if j < cols { bound.at(0, (*c).wrapping_sub(min_cell) as usize) as i32 } else { 0 };
+        *c = if j < cols { (*c).wrapping_sub(min_cell) } else { 0 };
     }
-    let mut hashed = Blocks::new(cell_fields::<K, D>(), ncell + w);
+    let mut hashed = Columns::new((1 << D) * K::HASHED.total(), ncp);
+    // The smallest and largest cell of each aligned chunk of columns.
+    let span_of: Vec<(usize, usize)> =
+        if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(cell_span).collect() };
     let mut plane: Option<[i32; D]> = None;
 
     for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
@@ -405,13 +441,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 }
                 let recs = kind.corners::<B>(c);
                 for (corner, r) in recs.iter().enumerate().take(corners) {
-                    let base = corner * fields::<K, D>();
-                    for m in 0..K::FLOATS {
-                        hashed.store(base + m, k, r.f[m]);
-                    }
-                    for m in 0..K::INTS {
-                        hashed.store(base + K::FLOATS + m, k, B::from_bits(r.i[m]));
-                    }
+                    hashed.store_corner(corner, k, r, K::HASHED);
                 }
                 k += w;
             }
@@ -436,21 +466,15 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         }
         let mut k = 0;
         while k < ncell {
-            let cells = CellBlock { blocks: &hashed, first: k };
+            let cells = CellBlock { columns: &hashed, first: k };
             if fast {
                 for (m, v) in polynomial(kind, &cells, fs, &pair_weights).into_iter().enumerate() {
                     bound.store(m, k, v);
                 }
             } else {
                 for c in 0..corners {
-                    let r = kind.bind(cells.corner::<K, D>(c), offsets(fs, c));
-                    let base = c * fields::<K, D>();
-                    for m in 0..K::FLOATS {
-                        bound.store(base + m, k, r.f[m]);
-                    }
-                    for m in 0..K::INTS {
-                        bound.store(base + K::FLOATS + m, k, B::from_bits(r.i[m]));
-                    }
+                    let r = kind.bind(cells.corner(c, K::HASHED), offsets(fs, c));
+                    bound.store_corner(c, k, &r, K::BOUND);
                 }
             }
             k += w;
@@ -466,17 +490,16 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         match (long_runs, fast) {
             // Whole rows: every chunk, written where it starts.
             (true, false) if whole => {
-                let fields = cell_fields::<K, D>();
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    let v = row.exact_at(kind, x, fade, &OneCell::new(&bound.data, ch.at, fields));
+                    let v = row.exact_at(kind, x, fade, &OneCell::new(&bound, ch.cell));
                     emit(v, &mut out[o0 + ch.start..]);
                 }
             }
             (true, true) if whole => {
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    emit(poly_at(x, fade, &OneCell::new(&bound.data, ch.at, 4)), &mut out[o0 + ch.start..]);
+                    emit(poly_at(x, fade, &OneCell::new(&bound, ch.cell)), &mut out[o0 + ch.start..]);
                 }
             }
             // Part of a row: chunks clipped to it.
@@ -484,7 +507,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
-                        let rec = OneCell::new(&bound.data, ch.at, cell_fields::<K, D>());
+                        let rec = OneCell::new(&bound, ch.cell);
                         emit(row.exact(kind, s, &rec), &mut out[o0 + s - a0..]);
                     }
                 }
@@ -493,7 +516,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
-                        let coef = OneCell::new(&bound.data, ch.at, 4);
+                        let coef = OneCell::new(&bound, ch.cell);
                         emit(row.poly(s, &coef), &mut out[o0 + s - a0..]);
                     }
                 }
@@ -501,8 +524,18 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             (false, fast) => {
                 let mut s = a0;
                 while s < a1 {
-                    let rec = PerLane { data: &bound.data, at: B::load_int(&cell0[s..]) };
-                    let v = if fast { row.poly(s, &rec) } else { row.exact(kind, s, &rec) };
+                    // The chunk's cells (lanes past the columns are discarded).
+                    let (first, last) = if s % w == 0 { span_of[s / w] } else { cell_span(&cell0[s..(s + w).min(cols)]) };
+                    let cells = B::load_int(&cell0[s..]);
+                    let lane = cells.sub(B::Int::splat(first as i32));
+                    let v = if last.wrapping_sub(first) < 2 * w {
+                        let rec = PerLane { columns: &bound, first, lane };
+                        if fast { row.poly(s, &rec) } else { row.exact(kind, s, &rec) }
+                    } else {
+                        // Far-apart cells (uneven or descending steps): one by one.
+                        let rec = Gathered { columns: &bound, cells };
+                        if fast { row.poly(s, &rec) } else { row.exact(kind, s, &rec) }
+                    };
                     emit(v, &mut out[o0 + s - a0..]);
                     s += w;
                 }
@@ -534,7 +567,7 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
         weights[0] = fade;
         let mut v = [B::cst(0.0); MAX_CORNERS];
         for c in 0..(1 << D) {
-            v[c] = kind.eval(&rec.corner::<K, D>(c), if c & 1 == 1 { xm1 } else { x });
+            v[c] = kind.eval(&rec.corner(c, K::BOUND), if c & 1 == 1 { xm1 } else { x });
         }
         finish(kind, interpolate(v, weights))
     }
@@ -588,8 +621,8 @@ fn polynomial<K: Lattice<D>, B: BatchLanes, const D: usize>(
     for k in 0..(1 << (D - 1)) {
         // Corners 2k and 2k + 1 differ on axis 0: A(u) = a + b·u (lower
         // corner, offset u) and B(u) − A(u) = c + d·u (upper, offset u − 1).
-        let lo = kind.bind(hashed.corner::<K, D>(2 * k), offsets(fs, 2 * k));
-        let up = kind.bind(hashed.corner::<K, D>(2 * k + 1), offsets(fs, 2 * k + 1));
+        let lo = kind.bind(hashed.corner(2 * k, K::HASHED), offsets(fs, 2 * k));
+        let up = kind.bind(hashed.corner(2 * k + 1, K::HASHED), offsets(fs, 2 * k + 1));
         let a = kind.eval(&lo, B::cst(0.0));
         let b = kind.eval(&lo, B::cst(1.0)) - a;
         let up0 = kind.eval(&up, B::cst(0.0));

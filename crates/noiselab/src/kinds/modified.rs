@@ -20,7 +20,7 @@
 //! Unconfirmed against the paper: the chaining order, pre-multipliers, the
 //! bit-to-gradient mapping and the output scale.
 
-use super::lattice::{self, Corner, Lattice};
+use super::lattice::{self, Corner, Fields, Lattice};
 use super::{corner_bit, fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
 use crate::grid::Span;
 use crate::hash::fmix32;
@@ -173,8 +173,8 @@ impl ModifiedTexture {
 macro_rules! modified_lattice {
     ($t:ty) => {
         impl<const D: usize> Lattice<D> for $t {
-            const FLOATS: usize = D;
-            const INTS: usize = 0;
+            const HASHED: Fields = Fields { floats: D, ints: 0 };
+            const BOUND: Fields = Fields { floats: D, ints: 0 };
 
             #[inline(always)]
             fn fade<L: Lanes>(&self, t: L) -> L {

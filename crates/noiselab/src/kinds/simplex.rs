@@ -4,14 +4,16 @@
 
 use super::finite_or_nan;
 use crate::hash::Permutation;
-use crate::lanes::{IntLanes, Lanes};
+use crate::lanes::{IntLanes, Lanes, Table256};
+use alloc::sync::Arc;
 use crate::noise::{Noise, NoiseGradient};
 
-/// Gustavson's `grad3`: the 12 edge midpoints of the cube.
-const GRAD3: [[i32; 12]; 3] = [
-    [1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0],
-    [1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1],
-    [0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1],
+/// Gustavson's `grad3`: the 12 edge midpoints of the cube, by column
+/// (padded to 16 entries for register-wide lookups).
+const GRAD3: [[i32; 16]; 3] = [
+    [1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 0, 0, 0, 0],
+    [1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 0, 0, 0, 0],
+    [0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 0, 0, 0],
 ];
 
 /// Gustavson's `grad4`: the 32 permutations of (0, ±1, ±1, ±1), by column.
@@ -42,13 +44,17 @@ const GRAD4: [[i32; 32]; 4] = [
 #[derive(Clone, Debug)]
 pub struct Simplex {
     perm: Permutation,
+    /// Gustavson's `permMod12`: `p[i] % 12`.
+    mod12: Arc<Table256>,
     seed: u32,
 }
 
 impl Simplex {
     /// Simplex noise with the permutation for `seed` (0 = reference).
     pub fn new(seed: u32) -> Self {
-        Simplex { perm: Permutation::new(seed), seed }
+        let perm = Permutation::new(seed);
+        let mod12 = Arc::new(Table256(perm.entries().0.map(|p| p % 12)));
+        Simplex { perm, mod12, seed }
     }
 
     /// The seed.
@@ -56,16 +62,46 @@ impl Simplex {
         self.seed
     }
 
-    /// `permMod12[i]`.
+    /// `permMod12[i]`, for `0 ≤ i < 512`.
     #[inline(always)]
     fn gradient_index<I: IntLanes>(&self, i: I) -> I {
-        self.perm.at(i).rem_euclid(12)
+        I::lookup256(&self.mod12, i)
     }
 
-    /// Gradient vector number `gi` from a by-axis table.
+    /// `grad3[gi]`.
     #[inline(always)]
-    fn gather<L: Lanes, const D: usize>(table: [&[i32]; D], gi: L::Int) -> [L; D] {
-        table.map(|axis| L::from_int(L::Int::gather_i32(axis, gi)))
+    fn grad3<L: Lanes, const D: usize>(gi: L::Int) -> [L; D] {
+        let mut g = [L::cst(0.0); D];
+        for (d, gd) in g.iter_mut().enumerate() {
+            *gd = L::from_int(L::Int::lookup16(&GRAD3[d], gi));
+        }
+        g
+    }
+
+    /// `grad4[gi]`.
+    #[inline(always)]
+    fn grad4<L: Lanes>(gi: L::Int) -> [L; 4] {
+        let mut g = [L::cst(0.0); 4];
+        for (d, gd) in g.iter_mut().enumerate() {
+            *gd = L::from_int(L::Int::lookup32(&GRAD4[d], gi));
+        }
+        g
+    }
+
+    /// Gustavson's 3D hash of a corner `(i + a, j + b, k + c)`:
+    /// `permMod12[ii + a + perm[jj + b + perm[kk + c]]]`.
+    #[inline(always)]
+    fn hash3<I: IntLanes>(&self, [ii, jj, kk]: [I; 3], [a, b, c]: [I; 3]) -> I {
+        self.gradient_index(ii.add(a).add(self.perm.at(jj.add(b).add(self.perm.at(kk.add(c))))))
+    }
+
+    /// The 4D hash of corner `c + o`, `perm[c0 + o0 + perm[c1 + o1 + …]] & 31`.
+    #[inline(always)]
+    fn hash4<I: IntLanes>(&self, c: [I; 4], o: [I; 4]) -> I {
+        let h = self.perm.at(c[3].add(o[3]));
+        let h = self.perm.at(c[2].add(o[2]).add(h));
+        let h = self.perm.at(c[1].add(o[1]).add(h));
+        self.perm.at(c[0].add(o[0]).add(h)).and_c(31)
     }
 }
 
@@ -165,8 +201,7 @@ impl Simplex {
         let gi0 = self.gradient_index(ii.add(self.perm.at(jj)));
         let gi1 = self.gradient_index(ii.add(i1).add(self.perm.at(jj.add(j1))));
         let gi2 = self.gradient_index(ii.add_c(1).add(self.perm.at(jj.add_c(1))));
-        let g = [&GRAD3[0][..], &GRAD3[1][..]];
-        let g = [gi0, gi1, gi2].map(|gi| Self::gather(g, gi));
+        let g = [Self::grad3(gi0), Self::grad3(gi1), Self::grad3(gi2)];
         Corners { p: [xin, yin], r2: 0.5, scale: 70.0, g, d: [[x0, y0], [x1, y1], [x2, y2]] }
     }
 
@@ -195,15 +230,14 @@ impl Simplex {
         let d2 = [minus(x0, i2) + g3x2, minus(y0, j2) + g3x2, minus(z0, k2) + g3x2];
         let one = L::cst(1.0);
         let d3 = [x0 - one + g3x3, y0 - one + g3x3, z0 - one + g3x3];
-        let (ii, jj, kk) = (i.and_c(255), j.and_c(255), k.and_c(255));
-        let hash = |a: L::Int, b: L::Int, c: L::Int| {
-            self.gradient_index(ii.add(a).add(self.perm.at(jj.add(b).add(self.perm.at(kk.add(c))))))
-        };
-        let zero = L::Int::splat(0);
-        let unit = L::Int::splat(1);
-        let g = [&GRAD3[0][..], &GRAD3[1][..], &GRAD3[2][..]];
-        let gi = [hash(zero, zero, zero), hash(i1, j1, k1), hash(i2, j2, k2), hash(unit, unit, unit)];
-        let g = gi.map(|gi| Self::gather(g, gi));
+        let cell = [i.and_c(255), j.and_c(255), k.and_c(255)];
+        let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
+        let g = [
+            Self::grad3(self.hash3(cell, [zero; 3])),
+            Self::grad3(self.hash3(cell, [i1, j1, k1])),
+            Self::grad3(self.hash3(cell, [i2, j2, k2])),
+            Self::grad3(self.hash3(cell, [unit; 3])),
+        ];
         Corners { p: [xin, yin, zin], r2: 0.6, scale: 32.0, g, d: [[x0, y0, z0], d1, d2, d3] }
     }
 
@@ -212,7 +246,10 @@ impl Simplex {
         let f4 = L::cst((5f64.sqrt() - 1.0) / 4.0);
         let g4 = L::cst((5.0 - 5f64.sqrt()) / 20.0);
         let s = (p[0] + p[1] + p[2] + p[3]) * f4;
-        let c = p.map(|x| (x + s).floor().to_int_wrapping());
+        let mut c = [L::Int::splat(0); 4];
+        for a in 0..4 {
+            c[a] = (p[a] + s).floor().to_int_wrapping();
+        }
         let t = L::from_int(c[0].add(c[1]).add(c[2]).add(c[3])) * g4;
         let mut x0 = p;
         for a in 0..4 {
@@ -228,32 +265,26 @@ impl Simplex {
                 rank[b] = rank[b].add(L::Int::splat(1).sub(a_wins));
             }
         }
-        // Corner k (1..=3) steps along the axes ranked at least 4 − k.
-        let offset = |k: i32| rank.map(|r| one_if::<L>(L::Int::splat(3 - k).lt(r)));
-        let (o1, o2, o3) = (offset(1), offset(2), offset(3));
-        let gk = |k: f64| L::cst(k) * g4;
-        let d = |o: [L::Int; 4], k: f64| {
-            let mut v = x0;
+        // Corner k (1..=3) steps along the axes ranked at least 4 − k, and
+        // sits at x0 − offset + k·G4.
+        let mut o = [[L::Int::splat(0); 4]; 5];
+        let mut d = [x0; 5];
+        for k in 1..5 {
+            let kg4 = if k == 1 { g4 } else { L::cst(k as f64) * g4 };
             for a in 0..4 {
-                v[a] = minus(x0[a], o[a]) + if k == 1.0 { g4 } else { gk(k) };
+                o[k][a] = if k == 4 { L::Int::splat(1) } else { one_if::<L>(L::Int::splat(3 - k as i32).lt(rank[a])) };
+                d[k][a] = if k == 4 { x0[a] - L::cst(1.0) + kg4 } else { minus(x0[a], o[k][a]) + kg4 };
             }
-            v
-        };
-        let one = L::cst(1.0);
-        let d4 = x0.map(|x| x - one + gk(4.0));
-        let cc = c.map(|ci| ci.and_c(255));
-        let hash = |o: [L::Int; 4]| {
-            let h = self.perm.at(cc[3].add(o[3]));
-            let h = self.perm.at(cc[2].add(o[2]).add(h));
-            let h = self.perm.at(cc[1].add(o[1]).add(h));
-            self.perm.at(cc[0].add(o[0]).add(h)).and_c(31)
-        };
-        let zero = [L::Int::splat(0); 4];
-        let unit = [L::Int::splat(1); 4];
-        let g = [&GRAD4[0][..], &GRAD4[1][..], &GRAD4[2][..], &GRAD4[3][..]];
-        let gi = [hash(zero), hash(o1), hash(o2), hash(o3), hash(unit)];
-        let g = gi.map(|gi| Self::gather(g, gi));
-        Corners { p, r2: 0.6, scale: 27.0, g, d: [x0, d(o1, 1.0), d(o2, 2.0), d(o3, 3.0), d4] }
+        }
+        let mut cell = c;
+        for a in 0..4 {
+            cell[a] = c[a].and_c(255);
+        }
+        let mut g = [[L::cst(0.0); 4]; 5];
+        for k in 0..5 {
+            g[k] = Self::grad4(self.hash4(cell, o[k]));
+        }
+        Corners { p, r2: 0.6, scale: 27.0, g, d }
     }
 
     /// 1D: Gustavson's `simplexnoise1234` definition (Perlin's permutation;
@@ -264,12 +295,12 @@ impl Simplex {
         let fl = x.floor();
         let i0 = fl.to_int_wrapping();
         let x0 = x - fl;
-        let gradient = |i: L::Int| {
-            let h = self.perm.at(i.and_c(255)).and_c(15);
-            let g = L::from_int(h.and_c(7).add_c(1));
-            [L::select(h.bit(3), -g, g)]
-        };
-        let g = [gradient(i0), gradient(i0.add_c(1))];
+        let mut g = [[L::cst(0.0)]; 2];
+        for (k, gk) in g.iter_mut().enumerate() {
+            let h = self.perm.at(i0.add_c(k as i32).and_c(255)).and_c(15);
+            let m = L::from_int(h.and_c(7).add_c(1));
+            *gk = [L::select(h.bit(3), -m, m)];
+        }
         Corners { p: [x], r2: 1.0, scale: 0.25, g, d: [[x0], [x0 - L::cst(1.0)]] }
     }
 }

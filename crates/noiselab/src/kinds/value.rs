@@ -1,7 +1,7 @@
 //! Value noise: a random value at each lattice node, interpolated with the
 //! quintic fade.
 
-use super::lattice::{self, Corner, Lattice};
+use super::lattice::{self, Corner, Fields, Lattice};
 use super::{corner_bit, fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
 use crate::grid::Span;
 use crate::hash::hash_cell;
@@ -44,8 +44,8 @@ impl Value {
 }
 
 impl<const D: usize> Lattice<D> for Value {
-    const FLOATS: usize = 1;
-    const INTS: usize = 0;
+    const HASHED: Fields = Fields { floats: 1, ints: 0 };
+    const BOUND: Fields = Fields { floats: 1, ints: 0 };
 
     #[inline(always)]
     fn fade<L: Lanes>(&self, t: L) -> L {

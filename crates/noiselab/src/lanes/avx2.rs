@@ -10,7 +10,7 @@
 //! that the batch drivers call after detecting those features (`grid.rs`):
 //! that is what makes the `unsafe` intrinsic calls below sound.
 
-use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, F32x8};
+use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table256, F32x8};
 use core::arch::x86_64::*;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -202,6 +202,15 @@ impl Lanes for X8 {
         X8(unsafe { _mm256_cvtepi32_ps(i.0) })
     }
     #[inline(always)]
+    fn lookup16(table: &[f32; 16], idx: I8) -> Self {
+        // Two eight-entry permutes, bit 3 picks.
+        unsafe {
+            let lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.as_ptr()), idx.0);
+            let hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table[8..].as_ptr()), idx.0);
+            X8(_mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(_mm256_slli_epi32::<28>(idx.0))))
+        }
+    }
+    #[inline(always)]
     fn gather(table: &[f32], idx: I8) -> Self {
         let i = idx.to_array();
         let mut out = [0f32; 8];
@@ -234,6 +243,15 @@ impl BatchLanes for X8 {
     #[inline(always)]
     fn from_bits(i: I8) -> Self {
         X8(unsafe { _mm256_castsi256_ps(i.0) })
+    }
+    #[inline(always)]
+    fn permute2(lo: Self, hi: Self, idx: I8) -> Self {
+        // Two eight-entry permutes, bit 3 picks.
+        unsafe {
+            let a = _mm256_permutevar8x32_ps(lo.0, idx.0);
+            let b = _mm256_permutevar8x32_ps(hi.0, idx.0);
+            X8(_mm256_blendv_ps(a, b, _mm256_castsi256_ps(_mm256_slli_epi32::<28>(idx.0))))
+        }
     }
     #[inline(always)]
     fn load_int(v: &[i32]) -> I8 {
@@ -309,6 +327,32 @@ impl IntLanes for I8 {
             out[k] = table[i[k] as usize] as i32;
         }
         I8::from_array(out)
+    }
+    #[inline(always)]
+    fn lookup256(table: &Table256, idx: Self) -> Self {
+        let i = idx.to_array();
+        let mut out = [0i32; 8];
+        for k in 0..8 {
+            out[k] = table.0[(i[k] & 255) as usize] as i32;
+        }
+        I8::from_array(out)
+    }
+    #[inline(always)]
+    fn lookup16(table: &[i32; 16], idx: Self) -> Self {
+        // Two eight-entry permutes, bit 3 picks.
+        unsafe {
+            let lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(table.as_ptr().cast()), idx.0);
+            let hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(table[8..].as_ptr().cast()), idx.0);
+            let upper = _mm256_slli_epi32::<28>(idx.0);
+            I8(_mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo), _mm256_castsi256_ps(hi), _mm256_castsi256_ps(upper))))
+        }
+    }
+    #[inline(always)]
+    fn lookup32(table: &[i32; 32], idx: Self) -> Self {
+        let (lo, hi) = (Self::lookup16(table[..16].try_into().unwrap(), idx), Self::lookup16(table[16..].try_into().unwrap(), idx));
+        // Bit 4 picks.
+        let upper = unsafe { _mm256_slli_epi32::<27>(idx.0) };
+        I8(unsafe { _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo.0), _mm256_castsi256_ps(hi.0), _mm256_castsi256_ps(upper))) })
     }
     #[inline(always)]
     fn gather_i32(table: &[i32], idx: Self) -> Self {

@@ -7,11 +7,11 @@
 //! IEEE-754 operation the scalar `f32` path performs, lane by lane.
 //!
 //! The types are crate-private and only ever instantiated inside functions
-//! compiled with `#[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl")]`
+//! compiled with `#[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]`
 //! that the batch drivers call after detecting those features (`grid.rs`):
 //! that is what makes the `unsafe` intrinsic calls below sound.
 
-use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, F32x16};
+use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table256, F32x16};
 use core::arch::x86_64::*;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -108,7 +108,7 @@ impl Not for M16 {
     }
 }
 
-// SAFETY (every `unsafe` block below): AVX-512 F/BW/DQ/VL are enabled
+// SAFETY (every `unsafe` block below): AVX-512 F/BW/DQ/VL/VBMI are enabled
 // wherever these types exist (module docs); loads and stores go through
 // slices of at least sixteen elements, checked by indexing.
 impl Lanes for X16 {
@@ -200,6 +200,10 @@ impl Lanes for X16 {
         X16(unsafe { _mm512_cvtepi32_ps(i.0) })
     }
     #[inline(always)]
+    fn lookup16(table: &[f32; 16], idx: I16) -> Self {
+        X16(unsafe { _mm512_permutexvar_ps(idx.0, _mm512_loadu_ps(table.as_ptr())) })
+    }
+    #[inline(always)]
     fn gather(table: &[f32], idx: I16) -> Self {
         let i = idx.to_array();
         let mut out = [0f32; 16];
@@ -232,6 +236,10 @@ impl BatchLanes for X16 {
     #[inline(always)]
     fn from_bits(i: I16) -> Self {
         X16(unsafe { _mm512_castsi512_ps(i.0) })
+    }
+    #[inline(always)]
+    fn permute2(lo: Self, hi: Self, idx: I16) -> Self {
+        X16(unsafe { _mm512_permutex2var_ps(lo.0, idx.0, hi.0) })
     }
     #[inline(always)]
     fn load_int(v: &[i32]) -> I16 {
@@ -307,6 +315,31 @@ impl IntLanes for I16 {
             out[k] = table[i[k] as usize] as i32;
         }
         I16::from_array(out)
+    }
+    #[inline(always)]
+    fn lookup256(table: &Table256, idx: Self) -> Self {
+        // The indices' low bytes select from four 64-byte registers: two
+        // two-table byte permutes cover 0..128 and 128..256, bit 7 picks.
+        let t = &table.0;
+        unsafe {
+            let [t0, t1, t2, t3] = [0, 64, 128, 192].map(|o| _mm512_loadu_si512(t[o..o + 64].as_ptr().cast()));
+            let bytes = _mm512_castsi128_si512(_mm512_cvtepi32_epi8(idx.0));
+            let low = _mm512_permutex2var_epi8(t0, bytes, t1);
+            let high = _mm512_permutex2var_epi8(t2, bytes, t3);
+            let picked = _mm512_mask_blend_epi8(_mm512_movepi8_mask(bytes), low, high);
+            I16(_mm512_cvtepu8_epi32(_mm512_castsi512_si128(picked)))
+        }
+    }
+    #[inline(always)]
+    fn lookup16(table: &[i32; 16], idx: Self) -> Self {
+        I16(unsafe { _mm512_permutexvar_epi32(idx.0, _mm512_loadu_si512(table.as_ptr().cast())) })
+    }
+    #[inline(always)]
+    fn lookup32(table: &[i32; 32], idx: Self) -> Self {
+        unsafe {
+            let (lo, hi) = (_mm512_loadu_si512(table.as_ptr().cast()), _mm512_loadu_si512(table[16..].as_ptr().cast()));
+            I16(_mm512_permutex2var_epi32(lo, idx.0, hi))
+        }
     }
     #[inline(always)]
     fn gather_i32(table: &[i32], idx: Self) -> Self {

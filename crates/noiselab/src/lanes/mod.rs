@@ -123,6 +123,9 @@ pub trait Lanes:
     fn from_int(i: Self::Int) -> Self;
     /// Per lane: `table[idx]`. Indices must be in range (kernels mask them).
     fn gather(table: &[Self::Elem], idx: Self::Int) -> Self;
+    /// Per lane: `table[idx & 15]`, widened exactly to the element type
+    /// (one permute on AVX-512).
+    fn lookup16(table: &[f32; 16], idx: Self::Int) -> Self;
 
     /// `self * self`.
     #[inline(always)]
@@ -146,6 +149,9 @@ pub trait BatchLanes: Lanes<Elem = f32> {
     fn to_bits(self) -> Self::Int;
     /// Lanes with the given bit patterns.
     fn from_bits(i: Self::Int) -> Self;
+    /// Per lane: entry `idx` of the `2·WIDTH` entries `lo` then `hi`
+    /// (`idx & (2·WIDTH − 1)`): one two-register permute on AVX-512.
+    fn permute2(lo: Self, hi: Self, idx: Self::Int) -> Self;
 }
 
 /// Signed 32-bit integer lanes with wrapping arithmetic.
@@ -182,6 +188,13 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// Per lane: `table[idx]` widened to i32. Indices must be in range.
     fn gather_u8(table: &[u8], idx: Self) -> Self;
+    /// Per lane: `table[idx & 255]`, a byte table of 256 entries (four
+    /// register-wide byte permutes on AVX-512 VBMI instead of sixteen loads).
+    fn lookup256(table: &Table256, idx: Self) -> Self;
+    /// Per lane: `table[idx & 15]` (one permute on AVX-512).
+    fn lookup16(table: &[i32; 16], idx: Self) -> Self;
+    /// Per lane: `table[idx & 31]` (one two-table permute on AVX-512).
+    fn lookup32(table: &[i32; 32], idx: Self) -> Self;
     /// Per lane: `table[idx]`. Indices must be in range.
     fn gather_i32(table: &[i32], idx: Self) -> Self;
 
@@ -201,6 +214,11 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
         self.and_c(1 << b).eq(Self::splat(1 << b))
     }
 }
+
+/// A 256-entry byte table, aligned for whole-register loads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C, align(64))]
+pub struct Table256(pub [u8; 256]);
 
 /// Linear interpolation `a + t·(b − a)`, the form every reference uses
 /// (Perlin 1985/2002, Gustavson). Not `a·(1−t) + b·t`, which rounds differently.

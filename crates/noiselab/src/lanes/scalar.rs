@@ -1,6 +1,6 @@
 //! `f32` and `f64` as one-lane [`Lanes`], with `i32` as their integer lanes.
 
-use super::{math, sealed::Sealed, Elem, IntLanes, Lanes};
+use super::{math, sealed::Sealed, Elem, IntLanes, Lanes, Table256};
 
 impl Sealed for f32 {}
 impl Sealed for f64 {}
@@ -106,6 +106,18 @@ impl IntLanes for i32 {
     fn gather_i32(table: &[i32], idx: Self) -> Self {
         table[idx as usize]
     }
+    #[inline(always)]
+    fn lookup256(table: &Table256, idx: Self) -> Self {
+        table.0[(idx & 255) as usize] as i32
+    }
+    #[inline(always)]
+    fn lookup16(table: &[i32; 16], idx: Self) -> Self {
+        table[(idx & 15) as usize]
+    }
+    #[inline(always)]
+    fn lookup32(table: &[i32; 32], idx: Self) -> Self {
+        table[(idx & 31) as usize]
+    }
 }
 
 macro_rules! scalar_lanes {
@@ -196,6 +208,10 @@ macro_rules! scalar_lanes {
             #[inline(always)]
             fn gather(table: &[$t], idx: i32) -> Self {
                 table[idx as usize]
+            }
+            #[inline(always)]
+            fn lookup16(table: &[f32; 16], idx: i32) -> Self {
+                table[(idx & 15) as usize] as $t
             }
         }
     };

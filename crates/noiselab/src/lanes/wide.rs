@@ -7,7 +7,7 @@
 //! IEEE-754 operation as the scalar `f32` one, so results are identical.
 //! [`F32x16`] fills one AVX-512 register; [`F32x8`] one AVX2 register.
 
-use super::{math, sealed::Sealed, BatchLanes, IntLanes, Lanes};
+use super::{math, sealed::Sealed, BatchLanes, IntLanes, Lanes, Table256};
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 #[inline(always)]
@@ -238,6 +238,14 @@ macro_rules! wide_lanes {
                 $f(out)
             }
             #[inline(always)]
+            fn lookup16(table: &[f32; 16], idx: $i) -> Self {
+                let mut out = [0f32; $n];
+                for k in 0..$n {
+                    out[k] = table[(idx.0[k] & 15) as usize];
+                }
+                $f(out)
+            }
+            #[inline(always)]
             fn gather(table: &[f32], idx: $i) -> Self {
                 let mut out = [0f32; $n];
                 for k in 0..$n {
@@ -277,6 +285,15 @@ macro_rules! wide_lanes {
                 let mut out = [0f32; $n];
                 for k in 0..$n {
                     out[k] = f32::from_bits(v.0[k] as u32);
+                }
+                $f(out)
+            }
+            #[inline(always)]
+            fn permute2(lo: Self, hi: Self, idx: $i) -> Self {
+                let mut out = [0f32; $n];
+                for k in 0..$n {
+                    let j = (idx.0[k] as usize) & (2 * $n - 1);
+                    out[k] = if j < $n { lo.0[j] } else { hi.0[j - $n] };
                 }
                 $f(out)
             }
@@ -357,6 +374,18 @@ macro_rules! wide_lanes {
             #[inline(always)]
             fn gather_i32(table: &[i32], idx: Self) -> Self {
                 idx.map(|i| table[i as usize])
+            }
+            #[inline(always)]
+            fn lookup256(table: &Table256, idx: Self) -> Self {
+                idx.map(|i| table.0[(i & 255) as usize] as i32)
+            }
+            #[inline(always)]
+            fn lookup16(table: &[i32; 16], idx: Self) -> Self {
+                idx.map(|i| table[(i & 15) as usize])
+            }
+            #[inline(always)]
+            fn lookup32(table: &[i32; 32], idx: Self) -> Self {
+                idx.map(|i| table[(i & 31) as usize])
             }
         }
     };
