@@ -21,14 +21,20 @@ pub trait Noise<const D: usize>: Send + Sync {
 
     /// The field at one point, in double precision.
     #[inline]
-    fn get(&self, p: [f64; D]) -> f64 {
-        self.sample::<f64>(p)
+    fn get(&self, p: [f64; D]) -> f64
+    where
+        Self: Sized,
+    {
+        grid::point(self, p)
     }
 
     /// The field at one point, in single precision.
     #[inline]
-    fn get_f32(&self, p: [f32; D]) -> f32 {
-        self.sample::<f32>(p)
+    fn get_f32(&self, p: [f32; D]) -> f32
+    where
+        Self: Sized,
+    {
+        grid::point(self, p)
     }
 
     /// Fill `out` with the field on a regular grid, axis 0 fastest.

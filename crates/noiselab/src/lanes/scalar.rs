@@ -92,11 +92,8 @@ impl IntLanes for i32 {
     }
     #[inline(always)]
     fn select(m: bool, a: Self, b: Self) -> Self {
-        if m {
-            a
-        } else {
-            b
-        }
+        // Branch-free: noise selects on hash bits, which no predictor learns.
+        core::hint::select_unpredictable(m, a, b)
     }
     #[inline(always)]
     fn gather_u8(table: &[u8], idx: Self) -> Self {
@@ -190,11 +187,8 @@ macro_rules! scalar_lanes {
             }
             #[inline(always)]
             fn select(m: bool, a: Self, b: Self) -> Self {
-                if m {
-                    a
-                } else {
-                    b
-                }
+                // Branch-free: noise selects on hash bits, which no predictor learns.
+                core::hint::select_unpredictable(m, a, b)
             }
             #[inline(always)]
             fn to_int_wrapping(self) -> i32 {
