@@ -77,6 +77,10 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
     /// How many of [`Corner`]'s fields [`Lattice::bind`]'s records use.
     const BOUND: Fields;
 
+    /// Whether corners contribute constants (value noise): `eval` ignores
+    /// the offset, so [`Accuracy::Fast`]'s row polynomial is `p + s(u)·q`.
+    const FLAT: bool = false;
+
     /// The blend weight of a position inside a cell.
     fn fade<L: Lanes>(&self, t: L) -> L;
 
@@ -499,7 +503,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             (true, true) if whole => {
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    emit(poly_at(x, fade, &OneCell::new(&bound, ch.cell)), &mut out[o0 + ch.start..]);
+                    emit(poly_at::<K, B, D>(x, fade, &OneCell::new(&bound, ch.cell)), &mut out[o0 + ch.start..]);
                 }
             }
             // Part of a row: chunks clipped to it.
@@ -517,7 +521,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
                         let coef = OneCell::new(&bound, ch.cell);
-                        emit(row.poly(s, &coef), &mut out[o0 + s - a0..]);
+                        emit(row.poly::<K>(s, &coef), &mut out[o0 + s - a0..]);
                     }
                 }
             }
@@ -530,11 +534,11 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     let lane = cells.sub(B::Int::splat(first as i32));
                     let v = if last.wrapping_sub(first) < 2 * w {
                         let rec = PerLane { columns: &bound, first, lane };
-                        if fast { row.poly(s, &rec) } else { row.exact(kind, s, &rec) }
+                        if fast { row.poly::<K>(s, &rec) } else { row.exact(kind, s, &rec) }
                     } else {
                         // Far-apart cells (uneven or descending steps): one by one.
                         let rec = Gathered { columns: &bound, cells };
-                        if fast { row.poly(s, &rec) } else { row.exact(kind, s, &rec) }
+                        if fast { row.poly::<K>(s, &rec) } else { row.exact(kind, s, &rec) }
                     };
                     emit(v, &mut out[o0 + s - a0..]);
                     s += w;
@@ -574,15 +578,20 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
 
     /// The same points from their cells' row polynomials ([`Accuracy::Fast`]).
     #[inline(always)]
-    fn poly(&self, s: usize, coef: &impl Source<B>) -> B {
-        poly_at(B::from_slice(&self.frac[s..]), B::from_slice(&self.fade[s..]), coef)
+    fn poly<K: Lattice<D>>(&self, s: usize, coef: &impl Source<B>) -> B {
+        poly_at::<K, B, D>(B::from_slice(&self.frac[s..]), B::from_slice(&self.fade[s..]), coef)
     }
 }
 
 /// The row polynomial at positions `x` (fades `fade`).
 #[inline(always)]
-fn poly_at<B: BatchLanes>(x: B, fade: B, coef: &impl Source<B>) -> B {
-    (coef.field(0) + coef.field(1) * x) + fade * (coef.field(2) + coef.field(3) * x)
+fn poly_at<K: Lattice<D>, B: BatchLanes, const D: usize>(x: B, fade: B, coef: &impl Source<B>) -> B {
+    if K::FLAT {
+        // Flat corners: the affine parts are constants.
+        coef.field(0) + fade * coef.field(2)
+    } else {
+        (coef.field(0) + coef.field(1) * x) + fade * (coef.field(2) + coef.field(3) * x)
+    }
 }
 
 /// A chunk's positions and fades, stored with it so whole rows read them

@@ -46,6 +46,7 @@ impl Value {
 impl<const D: usize> Lattice<D> for Value {
     const HASHED: Fields = Fields { floats: 1, ints: 0 };
     const BOUND: Fields = Fields { floats: 1, ints: 0 };
+    const FLAT: bool = true;
 
     #[inline(always)]
     fn fade<L: Lanes>(&self, t: L) -> L {

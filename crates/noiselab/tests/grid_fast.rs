@@ -1,0 +1,108 @@
+//! `Accuracy::Fast` grid fills: within 1e-6 (absolute) of the exact fill
+//! for every lattice kind and dimension and for fractals of them, on grids
+//! whose cells hold many points and few; exact for the other kinds.
+
+use noiselab::grid::fill_grid_at;
+use noiselab::{
+    Accuracy, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise,
+    SimdLevel, Simplex, Value, Worley,
+};
+
+/// The documented bound.
+const BOUND: f32 = 1e-6;
+
+fn grids<const D: usize>() -> Vec<Grid<D>> {
+    let size = |x: usize, rest: usize| core::array::from_fn(|d| if d == 0 { x } else { rest });
+    let rest = match D {
+        1 => 1,
+        2 => 40,
+        _ => 6,
+    };
+    vec![
+        Grid::new([0.0; D], [1.0 / 32.0; D], size(300, rest)),
+        Grid::new([-3.7; D], [1.0 / 7.0; D], size(200, rest)),
+        Grid::new([11.3; D], [0.3; D], size(150, rest)),
+        Grid::new([-250.5; D], [1.3; D], size(90, rest)),
+        Grid::new([5.0; D], [-0.045; D], size(120, rest)),
+        Grid::new([1000.25; D], [1.0 / 64.0; D], size(260, rest)),
+    ]
+}
+
+/// The largest |fast − exact| over the grids, at every instruction-set level.
+fn worst<N: Noise<D>, const D: usize>(noise: &N) -> f32 {
+    let mut worst = 0f32;
+    for grid in grids::<D>() {
+        for level in SimdLevel::available() {
+            let mut exact = vec![0f32; grid.len()];
+            let mut fast = vec![0f32; grid.len()];
+            fill_grid_at(level, noise, &grid, &mut exact, Accuracy::Exact).unwrap();
+            fill_grid_at(level, noise, &grid, &mut fast, Accuracy::Fast).unwrap();
+            for (e, f) in exact.iter().zip(&fast) {
+                assert!(e.is_finite() && f.is_finite());
+                worst = worst.max((e - f).abs());
+            }
+        }
+    }
+    worst
+}
+
+macro_rules! within_bound {
+    ($($name:expr => $noise:expr, $d:literal;)*) => {{
+        let mut report = Vec::new();
+        $(
+            let w = worst::<_, $d>(&$noise);
+            report.push(format!("{} {}D: {:e}", $name, $d, w));
+            assert!(w <= BOUND, "{} {}D: fast differs from exact by {:e} > {:e}", $name, $d, w, BOUND);
+        )*
+        report
+    }};
+}
+
+#[test]
+fn fast_lattice_fills_stay_within_the_bound() {
+    let report = within_bound! {
+        "improved" => Improved::new(3), 1;
+        "improved" => Improved::new(3), 2;
+        "improved" => Improved::new(0), 3;
+        "improved-2002" => Improved::new(1).with_variant(ImprovedVariant::Original2002), 3;
+        "improved" => Improved::new(9), 4;
+        "value" => Value::new(1), 1;
+        "value" => Value::new(1), 2;
+        "value" => Value::new(2), 3;
+        "value" => Value::new(3), 4;
+        "classic" => Classic::new(0), 1;
+        "classic" => Classic::new(4), 2;
+        "classic" => Classic::new(0), 3;
+        "modified" => Modified::new(5), 2;
+        "modified" => Modified::new(5), 3;
+        "modified-wide" => Modified::new(5).with_hash(ModifiedHash::Wide), 4;
+        "modified-textured" => ModifiedTexture::new(&Modified::new(2)), 3;
+        "tiled improved" => Improved::new(2).with_period([5, 3, 0, 0]).unwrap(), 2;
+        "fbm improved" => Fractal::new(|o| Improved::new(o.seed), 1, 6, FractalMode::Fbm).unwrap(), 2;
+        "fbm improved" => Fractal::new(|o| Improved::new(o.seed), 1, 4, FractalMode::Fbm).unwrap(), 3;
+        "ridged value" => Fractal::new(|o| Value::new(o.seed), 1, 5, FractalMode::Ridged).unwrap(), 2;
+        "turbulence classic" => Fractal::new(|o| Classic::new(o.seed), 1, 5, FractalMode::Turbulence).unwrap(), 2;
+    };
+    println!("largest |fast − exact|:\n{}", report.join("\n"));
+}
+
+#[test]
+fn fast_fills_of_other_kinds_are_exact() {
+    let grid = Grid::new([0.3, -1.2], [1.0 / 32.0, 0.07], [100, 30]);
+    for level in SimdLevel::available() {
+        for (name, exact, fast) in [
+            ("simplex", fill(level, &Simplex::new(3), &grid, Accuracy::Exact), fill(level, &Simplex::new(3), &grid, Accuracy::Fast)),
+            ("worley", fill(level, &Worley::new(3), &grid, Accuracy::Exact), fill(level, &Worley::new(3), &grid, Accuracy::Fast)),
+        ] {
+            for (e, f) in exact.iter().zip(&fast) {
+                assert_eq!(e.to_bits(), f.to_bits(), "{name} at {level:?}");
+            }
+        }
+    }
+}
+
+fn fill<N: Noise<2>>(level: SimdLevel, noise: &N, grid: &Grid<2>, accuracy: Accuracy) -> Vec<f32> {
+    let mut out = vec![0f32; grid.len()];
+    fill_grid_at(level, noise, grid, &mut out, accuracy).unwrap();
+    out
+}
