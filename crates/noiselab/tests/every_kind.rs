@@ -272,3 +272,23 @@ proptest::proptest! {
         for_every_kind!(check);
     }
 }
+
+/// Grids large enough to be split into parallel tasks (with the `parallel`
+/// feature, which the workspace's command line turns on) give every point
+/// the bits of the scalar API, wherever the tasks cut the rows.
+#[test]
+fn large_grids_equal_the_scalar_api() {
+    fn check<N: Noise<D>, const D: usize>(name: &str, noise: &N, grid: Grid<D>) {
+        let mut out = vec![0f32; grid.len()];
+        noise.fill_grid(&grid, &mut out).unwrap();
+        for (i, &b) in out.iter().enumerate().step_by(7) {
+            let s = noise.get_f32(grid.point(i));
+            assert!(same(s, b), "{name} {D}D point {i}: scalar {s:e} batch {b:e}");
+        }
+    }
+    check("improved", &Improved::new(1), Grid::new([0.1, -3.0], [1.0 / 32.0, 1.0 / 40.0], [1031, 700]));
+    check("simplex", &Simplex::new(1), Grid::new([0.1, -3.0], [0.01, 0.02], [700, 1031]));
+    check("value", &Value::new(1), Grid::new([0.0; 3], [0.05; 3], [90, 80, 70]));
+    check("fbm improved", &Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(), Grid::new([0.0; 2], [1.0 / 64.0; 2], [1500, 400]));
+    check("worley", &Worley::new(3), Grid::new([-7.0; 2], [1.0 / 16.0; 2], [600, 600]));
+}
