@@ -10,10 +10,10 @@ use crate::noise::{Noise, NoiseGradient};
 
 /// Gustavson's `grad3`: the 12 edge midpoints of the cube, by column
 /// (padded to 16 entries for register-wide lookups).
-const GRAD3: [[i32; 16]; 3] = [
-    [1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 0, 0, 0, 0],
-    [1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 0, 0, 0, 0],
-    [0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 0, 0, 0],
+const GRAD3: [[f32; 16]; 3] = [
+    [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0],
 ];
 
 /// Gustavson's `grad4`: the 32 permutations of (0, ±1, ±1, ±1), by column.
@@ -73,7 +73,7 @@ impl Simplex {
     fn grad3<L: Lanes, const D: usize>(gi: L::Int) -> [L; D] {
         let mut g = [L::cst(0.0); D];
         for (d, gd) in g.iter_mut().enumerate() {
-            *gd = L::from_int(L::Int::lookup16(&GRAD3[d], gi));
+            *gd = L::lookup16(&GRAD3[d], gi);
         }
         g
     }
@@ -180,6 +180,13 @@ fn minus<L: Lanes>(x: L, i: L::Int) -> L {
     x - L::from_int(i)
 }
 
+/// `x − 1` where `m`, else `x` (`x − 0` is `x`, signed zeros included):
+/// the reference's `x0 - i1` for `i1 = m ? 1 : 0`, without the conversion.
+#[inline(always)]
+fn minus_one_if<L: Lanes>(x: L, m: L::Mask) -> L {
+    L::select(m, x - L::cst(1.0), x)
+}
+
 impl Simplex {
     #[inline(always)]
     fn corners2<L: Lanes>(&self, [xin, yin]: [L; 2]) -> Corners<L, 2, 3> {
@@ -193,8 +200,8 @@ impl Simplex {
         let y0 = yin - (L::from_int(j) - t);
         let upper = x0.gt(y0);
         let (i1, j1) = (one_if::<L>(upper), one_if::<L>(!upper));
-        let x1 = minus(x0, i1) + g2;
-        let y1 = minus(y0, j1) + g2;
+        let x1 = minus_one_if(x0, upper) + g2;
+        let y1 = minus_one_if(y0, !upper) + g2;
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
         let (ii, jj) = (i.and_c(255), j.and_c(255));
@@ -219,15 +226,13 @@ impl Simplex {
         let z0 = zin - (L::from_int(k) - t);
         // The reference's if/else ladder (with its `>=` tie rules) as masks.
         let (xy, yz, xz) = (x0.ge(y0), y0.ge(z0), x0.ge(z0));
-        let i1 = one_if::<L>(xy & (yz | xz));
-        let j1 = one_if::<L>(!xy & yz);
-        let k1 = one_if::<L>((xy & !yz & !xz) | (!xy & !yz));
-        let i2 = one_if::<L>(xy | (yz & xz));
-        let j2 = one_if::<L>(!xy | yz);
-        let k2 = one_if::<L>((xy & !yz) | (!xy & (!yz | !xz)));
+        let (mi1, mj1, mk1) = (xy & (yz | xz), !xy & yz, (xy & !yz & !xz) | (!xy & !yz));
+        let (mi2, mj2, mk2) = (xy | (yz & xz), !xy | yz, (xy & !yz) | (!xy & (!yz | !xz)));
+        let (i1, j1, k1) = (one_if::<L>(mi1), one_if::<L>(mj1), one_if::<L>(mk1));
+        let (i2, j2, k2) = (one_if::<L>(mi2), one_if::<L>(mj2), one_if::<L>(mk2));
         let (g3x2, g3x3) = (L::cst(2.0) * g3, L::cst(3.0) * g3);
-        let d1 = [minus(x0, i1) + g3, minus(y0, j1) + g3, minus(z0, k1) + g3];
-        let d2 = [minus(x0, i2) + g3x2, minus(y0, j2) + g3x2, minus(z0, k2) + g3x2];
+        let d1 = [minus_one_if(x0, mi1) + g3, minus_one_if(y0, mj1) + g3, minus_one_if(z0, mk1) + g3];
+        let d2 = [minus_one_if(x0, mi2) + g3x2, minus_one_if(y0, mj2) + g3x2, minus_one_if(z0, mk2) + g3x2];
         let one = L::cst(1.0);
         let d3 = [x0 - one + g3x3, y0 - one + g3x3, z0 - one + g3x3];
         let cell = [i.and_c(255), j.and_c(255), k.and_c(255)];
