@@ -50,6 +50,8 @@ const WORKLOADS: &[(&str, &str)] = &[
     ("3d_perlin_points", "3D Perlin, 4M random points"),
     ("scalar_f64_3d_perlin_grid", "scalar `f64` 3D Perlin, 256³ grid"),
     ("scalar_f64_3d_perlin_points", "scalar `f64` 3D Perlin, 4M random points"),
+    ("2d_sparse", "2D sparse convolution (20 impulses/cell), 2048² grid"),
+    ("3d_fast_texture", "3D fast volume-texture noise, 256³ grid"),
 ];
 
 const BENCH_COMMAND: &str = "cargo bench --manifest-path benches/Cargo.toml --bench peers";
