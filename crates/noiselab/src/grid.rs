@@ -466,6 +466,14 @@ macro_rules! dispatcher {
 }
 
 dispatcher!(dispatch_span, span_body, (span: Span<'_, D>, out: &mut [f32]));
+
+/// One span at `level` through `noise`'s own driver: a kind whose grid path
+/// is large calls this from its `fill_span` (with its lanes' level) so that
+/// the path is compiled once per dimension and level, not inlined into
+/// every noise containing that kind.
+pub(crate) fn fill_span_at<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+    dispatch_span(level, noise, span, out)
+}
 dispatcher!(dispatch_points, points_span, (points: &[[f32; D]], out: &mut [f32]));
 
 #[inline(always)]

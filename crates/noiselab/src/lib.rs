@@ -11,7 +11,7 @@
 //! let v = noise.get([3.14, 42.0, 7.0]);
 //! assert_eq!(v, 0.13691995878400012); // Perlin's ImprovedNoise.java gives exactly this
 //!
-//! // A 256×256 slice at z = 0.5, 32 samples per lattice cell, eight lanes at a time.
+//! // A 256×256 slice at z = 0.5, 32 samples per lattice cell, 16 or 8 lanes at a time.
 //! let grid = Grid::new([0.0, 0.0, 0.5], [1.0 / 32.0, 1.0 / 32.0, 0.0], [256, 256, 1]);
 //! let mut image = vec![0f32; grid.len()];
 //! noise.fill_grid(&grid, &mut image).unwrap();
@@ -22,9 +22,13 @@
 //!
 //! Every kind implements one trait, [`Noise`], whose single method
 //! [`Noise::sample`] is generic over a sealed lane type ([`lanes::Lanes`]):
-//! `f64`, `f32` or [`lanes::F32x8`]. So each algorithm is written once and
-//! serves the scalar APIs, the batch APIs ([`Noise::fill_grid`],
-//! [`Noise::fill_points`]) and, later, other backends. See `ARCHITECTURE.md`.
+//! `f64`, `f32`, [`lanes::F32x8`] or [`lanes::F32x16`]. So each algorithm is
+//! written once and serves the scalar APIs and the batch APIs
+//! ([`Noise::fill_grid`], [`Noise::fill_points`]), whose instruction set
+//! (AVX-512, AVX2 or portable) is picked at run time; kinds may add a grid
+//! path that exploits a grid's structure, bit-identical to the point path
+//! ([`Noise::fill_grid_fast`] trades the last bits for speed, within 1e-6).
+//! See `ARCHITECTURE.md`.
 //!
 //! ## Kinds and ranges
 //!

@@ -4,9 +4,13 @@
 
 use core::fmt;
 
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::{Period, PeriodError};
+use crate::grid::{fill_pointwise, fill_span_at, store_prefix, RowPiece, Span};
 use crate::hash::{fmix32, hash_cell};
-use crate::lanes::{IntLanes, Lanes};
+use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use crate::noise::Noise;
 
 /// How distance is measured.
@@ -163,7 +167,7 @@ impl Worley {
     /// positions), in double precision.
     pub fn nearest<const D: usize>(&self, p: [f64; D]) -> Nearest<D> {
         let found = self.search::<f64, D>(p, 4);
-        Nearest { distance: found.distance, id: found.id.map(|i| i as u32), point: found.point }
+        Nearest { distance: found.distance.map(|k| self.finish(k)), id: found.id.map(|i| i as u32), point: found.point }
     }
 
     /// The feature point of a cell (the same one every query sees).
@@ -181,40 +185,68 @@ impl Worley {
         hash_cell(self.period.wrap_cell(cell), self.seed)
     }
 
-    /// The distance for an offset, in the metric.
+    /// The search key of an offset: its distance in the metric, squared
+    /// for [`Metric::Euclidean`] (the root is monotone, so the roots of the
+    /// sorted squares are the sorted roots: one root per output, not one
+    /// per candidate).
     #[inline(always)]
-    fn distance<L: Lanes, const D: usize>(&self, d: [L; D]) -> L {
-        match self.metric {
-            Metric::Euclidean | Metric::EuclideanSquared => {
-                let mut s = d[0] * d[0];
-                for c in &d[1..] {
-                    s = s + *c * *c;
-                }
-                if self.metric == Metric::Euclidean { s.sqrt() } else { s }
-            }
-            Metric::Manhattan => d[1..].iter().fold(d[0].abs(), |s, c| s + c.abs()),
-            Metric::Chebyshev => d[1..].iter().fold(d[0].abs(), |s, c| s.max(c.abs())),
-            Metric::Minkowski(p) => {
-                let e = L::cst(p);
-                let s = d[1..].iter().fold(d[0].abs().powf(e), |s, c| s + c.abs().powf(e));
-                s.powf(L::cst(1.0 / p))
-            }
-        }
+    fn key<L: Lanes, const D: usize>(&self, d: &[L; D]) -> L {
+        key_in(self.metric, d)
     }
 
-    /// A lower bound, in the metric, on the distance to any cell at
+    /// [`Worley::key`] of several offsets, the metric dispatched once: in
+    /// each arm the metric is a constant, so the calls fold to its formula.
+    #[inline(always)]
+    fn keys<L: Lanes, const D: usize, const N: usize>(&self, d: &[[L; D]; N]) -> [L; N] {
+        let mut keys = [L::cst(0.0); N];
+        match self.metric {
+            Metric::Euclidean | Metric::EuclideanSquared => {
+                for (key, d) in keys.iter_mut().zip(d) {
+                    *key = key_in(Metric::EuclideanSquared, d);
+                }
+            }
+            Metric::Manhattan => {
+                for (key, d) in keys.iter_mut().zip(d) {
+                    *key = key_in(Metric::Manhattan, d);
+                }
+            }
+            Metric::Chebyshev => {
+                for (key, d) in keys.iter_mut().zip(d) {
+                    *key = key_in(Metric::Chebyshev, d);
+                }
+            }
+            Metric::Minkowski(q) => {
+                for (key, d) in keys.iter_mut().zip(d) {
+                    *key = key_in(Metric::Minkowski(q), d);
+                }
+            }
+        }
+        keys
+    }
+
+    /// The distance of a search key.
+    #[inline(always)]
+    fn finish<L: Lanes>(&self, key: L) -> L {
+        if self.metric == Metric::Euclidean { key.sqrt() } else { key }
+    }
+
+    /// A lower bound, as a search key, on the distance to any cell at
     /// Chebyshev ring `r` ≥ 1, given the offset `edge` of the point from the
     /// nearest face of its own cell: every metric here is at least the
     /// largest per-axis difference, which is at least `r − 1 + edge`.
     #[inline(always)]
     fn ring_bound<L: Lanes>(&self, r: usize, edge: L) -> L {
         let b = L::cst((r - 1) as f64) + edge;
-        if self.metric == Metric::EuclideanSquared { b * b } else { b }
+        match self.metric {
+            Metric::Euclidean | Metric::EuclideanSquared => b * b,
+            _ => b,
+        }
     }
 
-    /// The `k` nearest feature points, by rings of cells.
+    /// A point's cell, its position in the cell, and its distance to the
+    /// cell's nearest face.
     #[inline(always)]
-    fn search<L: Lanes, const D: usize>(&self, p: [L; D], k: usize) -> Found<L, D> {
+    fn split<L: Lanes, const D: usize>(p: [L; D]) -> ([L::Int; D], [L; D], L) {
         let mut base = [L::Int::splat(0); D];
         let mut frac = p;
         let mut edge = L::cst(1.0);
@@ -224,10 +256,46 @@ impl Worley {
             frac[a] = p[a] - fl;
             edge = edge.min(frac[a]).min(L::cst(1.0) - frac[a]);
         }
-        let far = L::cst(f64::INFINITY);
-        let mut found = Found { distance: [far; 4], id_lanes: [L::Int::splat(0); 2], point: [[L::cst(0.0); D]; 2], id: [0; 2] };
-        let jitter = L::cst(self.jitter);
-        let half = L::cst(0.5);
+        (base, frac, edge)
+    }
+
+    /// The displacement of a cell's feature point from the cell's centre
+    /// along `axis`: jitter·(u − ½).
+    #[inline(always)]
+    fn jitter_along<L: Lanes>(&self, id: L::Int, axis: usize) -> L {
+        let h = fmix32(id.add(L::Int::splat(AXIS_SALT[axis])));
+        let u = L::from_int(h.shr(8)) * L::cst(1.0 / 16_777_216.0);
+        L::cst(self.jitter) * (u - L::cst(0.5))
+    }
+
+    /// Along one axis, the offset from a point at `frac` in its cell to the
+    /// feature point of the cell `o` cells away, displaced by `t`.
+    #[inline(always)]
+    fn reach<L: Lanes>(o: i32, t: L, frac: L) -> L {
+        L::cst(o as f64) + L::cst(0.5) + t - frac
+    }
+
+    /// The output from the nearest keys (and F1's id).
+    #[inline(always)]
+    fn output<L: Lanes, const D: usize>(&self, found: &Found<L, D>) -> L {
+        let [k1, k2, k3, k4] = found.distance;
+        match self.output {
+            CellOutput::F1 => self.finish(k1),
+            CellOutput::F2 => self.finish(k2),
+            CellOutput::F3 => self.finish(k3),
+            CellOutput::F4 => self.finish(k4),
+            CellOutput::F2MinusF1 => self.finish(k2) - self.finish(k1),
+            CellOutput::Mean12 => (self.finish(k1) + self.finish(k2)) * L::cst(0.5),
+            CellOutput::Product12 => self.finish(k1) * self.finish(k2),
+            CellOutput::CellValue => L::from_int(found.id_lanes[0].shr(8)) * L::cst(1.0 / 8_388_608.0) - L::cst(1.0),
+        }
+    }
+
+    /// The `k` nearest feature points, by rings of cells.
+    #[inline(always)]
+    fn search<L: Lanes, const D: usize>(&self, p: [L; D], k: usize) -> Found<L, D> {
+        let (base, frac, edge) = Self::split(p);
+        let mut found = Found::new();
         // Rings beyond this cannot matter for any metric here (the k-th
         // nearest within ring 1 is at most the far corner of the 3^D block,
         // 2·D away in the largest metric); it only bounds the loop.
@@ -250,26 +318,265 @@ impl Worley {
                 if !on_ring {
                     continue;
                 }
-                let cell: [L::Int; D] = core::array::from_fn(|a| base[a].add_c(offset[a]));
+                let mut cell = base;
+                for a in 0..D {
+                    cell[a] = base[a].add_c(offset[a]);
+                }
                 let id = self.cell_id(cell);
                 let mut d = [L::cst(0.0); D];
                 let mut point = [L::cst(0.0); D];
                 for a in 0..D {
-                    let h = fmix32(id.add(L::Int::splat(AXIS_SALT[a])));
-                    let u = L::from_int(h.shr(8)) * L::cst(1.0 / 16_777_216.0);
-                    let local = L::cst(offset[a] as f64) + half + jitter * (u - half);
-                    d[a] = local - frac[a];
+                    d[a] = Self::reach(offset[a], self.jitter_along(id, a), frac[a]);
                     point[a] = p[a] + d[a];
                 }
-                found.insert(self.distance(d), id, point, k);
+                found.insert(self.key(&d), id, point, k);
             }
         }
         found.id = [0, 1].map(|i| found.id_lanes[i].lane(0));
         found
     }
+
+    /// The grid fill. Rows share their cells along axes 1.., so each
+    /// row's feature points (displacements and ids of the 3^(D−1) rows of
+    /// cells around it) are computed once per row of cells; each chunk of
+    /// points then only permutes them into lanes and measures. The
+    /// candidates and every decision are `search`'s, in its order, so the
+    /// bits are the point path's. Falls back to it where a row's cells are
+    /// sparse, a chunk spans too many cells, or a point needs ring 2.
+    #[inline(always)]
+    fn fill_span_grid<B: BatchLanes, const D: usize>(&self, span: Span<'_, D>, out: &mut [f32])
+    where
+        Worley: Noise<D>,
+    {
+        let w = B::WIDTH;
+        let xs = span.axes.axis(0);
+        let nx = xs.len();
+        if out.is_empty() || nx == 0 {
+            return;
+        }
+        // The columns this span touches, and their cells.
+        let first = span.start % nx;
+        let (lo, hi) = if first + out.len() <= nx { (first, first + out.len()) } else { (0, nx) };
+        if !xs[lo..hi].iter().all(|x| x.abs() < 1e9) {
+            return fill_pointwise::<Self, B, D>(self, span, out);
+        }
+        let cells: Vec<i32> = xs[lo..hi].iter().map(|x| x.floor() as i32).collect();
+        let (min_cell, max_cell) = cell_range(&cells);
+        let ncell = (max_cell - min_cell) as usize + 1;
+        if ncell > 2 * (hi - lo) + 64 {
+            return fill_pointwise::<Self, B, D>(self, span, out);
+        }
+        // Feature points of cells min_cell − 1 ..= max_cell + 1 (column c
+        // is cell min_cell − 1 + c) in each row of cells around the grid
+        // row: field j·(D + 1) + a is the displacement along axis a of row
+        // j's cells, field j·(D + 1) + D their ids' bits.
+        let rows = 3usize.pow(D as u32 - 1);
+        let stride = ncell + 2 + 2 * w;
+        let mut features = vec![0f32; rows * (D + 1) * stride];
+        let mut plane: Option<[i32; D]> = None;
+
+        for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
+            let idx = span.axes.row_indices(row);
+            let mut p = [B::splat(0.0); D];
+            for a in 1..D {
+                p[a] = B::splat(span.axes.axis(a)[idx[a]]);
+            }
+            let row_base = Self::split(p).0;
+            let mut row_cell = [0i32; D];
+            for a in 1..D {
+                row_cell[a] = row_base[a].lane(0);
+            }
+            if plane != Some(row_cell) {
+                for j in 0..rows {
+                    let mut cell = [B::Int::splat(0); D];
+                    for a in 1..D {
+                        cell[a] = B::Int::splat(row_cell[a]).add_c(digit(j, a - 1));
+                    }
+                    let mut c = 0;
+                    while c < ncell + 2 {
+                        cell[0] = B::iota().add(B::Int::splat(min_cell.wrapping_sub(1).wrapping_add(c as i32)));
+                        let id = self.cell_id(cell);
+                        let field = j * (D + 1);
+                        for a in 0..D {
+                            self.jitter_along::<B>(id, a).store(&mut features[(field + a) * stride + c..]);
+                        }
+                        B::from_bits(id).store(&mut features[(field + D) * stride + c..]);
+                        c += w;
+                    }
+                }
+                plane = Some(row_cell);
+            }
+            let mut k = 0;
+            while k < n {
+                let count = (n - k).min(w);
+                let i = i0 + k;
+                p[0] = if count == w {
+                    B::from_slice(&xs[i..i + w])
+                } else {
+                    // Pad the tail with the last point; its lanes are discarded.
+                    let mut pad = [0f32; 16];
+                    for (j, x) in pad.iter_mut().enumerate().take(w) {
+                        *x = xs[i + j.min(count - 1)];
+                    }
+                    B::from_slice(&pad)
+                };
+                let (a, b) = cell_range(&cells[i - lo..i - lo + count]);
+                // Columns a − 1 ..= b + 1 must fit two registers.
+                let v = if ((b - a) as usize) + 3 <= 2 * w {
+                    let near = Window { features: &features, stride, first: (a - min_cell) as usize, origin: a - 1 };
+                    // F1 alone (the common case) with k a constant: the
+                    // nearest then lives in a register.
+                    match self.output.needs() {
+                        1 => self.chunk::<B, D>(p, &near, 1),
+                        k => self.chunk::<B, D>(p, &near, k),
+                    }
+                } else {
+                    None
+                };
+                let v = v.unwrap_or_else(|| self.sample(p));
+                store_prefix(v, &mut out[o0 + k..o0 + k + count]);
+                k += count;
+            }
+        }
+    }
+
+    /// One chunk from a row's feature points: `search` over rings 0 and 1
+    /// (the same candidates in the same order), or `None` where some lane
+    /// needs ring 2. `k` is the number of distances kept.
+    #[inline(always)]
+    fn chunk<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &Window<'_>, k: usize) -> Option<B> {
+        let (base, frac, edge) = Self::split(p);
+        let column = base[0].sub(B::Int::splat(near.origin));
+        let columns = [column.add_c(-1), column, column.add_c(1)];
+        let planes = 3usize.pow(D as u32 - 1);
+        let centre = planes / 2;
+        let mut found = Found::new();
+        // Ring 0: the middle of the centre row of three.
+        let mid = self.row_of_three(p, frac, &columns, centre, near);
+        found.insert(mid.keys[1], mid.ids[1], mid.points[1], k);
+        if !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
+            return Some(super::finite_or_nan(p, self.output(&found)));
+        }
+        // Ring 1: every row of three, the centre row's middle left out.
+        for j in 0..planes {
+            let mut row = if j == centre { mid } else { self.row_of_three(p, frac, &columns, j, near) };
+            if j == centre {
+                row.keys[1] = B::cst(f64::INFINITY);
+            }
+            if k == 1 {
+                // The row's nearest first (ties to the earlier, as
+                // insertion keeps them): one dependent insertion per row.
+                let (mut key, mut id, mut point) = (row.keys[0], row.ids[0], row.points[0]);
+                for c in 1..3 {
+                    let closer = row.keys[c].lt(key);
+                    key = B::select(closer, row.keys[c], key);
+                    id = B::Int::select(closer, row.ids[c], id);
+                    for a in 0..D {
+                        point[a] = B::select(closer, row.points[c][a], point[a]);
+                    }
+                }
+                found.insert(key, id, point, k);
+            } else {
+                for c in 0..3 {
+                    found.insert(row.keys[c], row.ids[c], row.points[c], k);
+                }
+            }
+        }
+        if B::any(self.ring_bound(2, edge).lt(found.distance[k - 1])) {
+            return None;
+        }
+        Some(super::finite_or_nan(p, self.output(&found)))
+    }
+
+    /// The feature points of cells −1, 0 and +1 along axis 0 from each
+    /// lane's cell, in the row of cells `j` (base 3 over axes 1.., as in
+    /// `search`'s ring 1, whose order `j`-major, axis 0 minor, this keeps).
+    #[inline(always)]
+    fn row_of_three<B: BatchLanes, const D: usize>(
+        &self,
+        p: [B; D],
+        frac: [B; D],
+        columns: &[B::Int; 3],
+        j: usize,
+        near: &Window<'_>,
+    ) -> Three<B, D> {
+        let field = j * (D + 1);
+        let mut d = [[B::splat(0.0); D]; 3];
+        let mut points = [[B::splat(0.0); D]; 3];
+        let mut ids = [B::Int::splat(0); 3];
+        for c in 0..3 {
+            for a in 0..D {
+                let o = if a == 0 { c as i32 - 1 } else { digit(j, a - 1) };
+                d[c][a] = Self::reach(o, near.lanes::<B>(field + a, columns[c]), frac[a]);
+                points[c][a] = p[a] + d[c][a];
+            }
+            ids[c] = near.lanes::<B>(field + D, columns[c]).to_bits();
+        }
+        Three { keys: self.keys(&d), ids, points }
+    }
 }
 
-/// The k nearest so far, sorted, with F1/F2 ids and positions.
+/// Three candidates' keys, ids and positions.
+#[derive(Clone, Copy)]
+struct Three<B: BatchLanes, const D: usize> {
+    keys: [B; 3],
+    ids: [B::Int; 3],
+    points: [[B; D]; 3],
+}
+
+/// An offset's search key in `metric` (see [`Worley::key`]).
+#[inline(always)]
+fn key_in<L: Lanes, const D: usize>(metric: Metric, d: &[L; D]) -> L {
+    let mut s = match metric {
+        Metric::Euclidean | Metric::EuclideanSquared => d[0] * d[0],
+        Metric::Manhattan | Metric::Chebyshev => d[0].abs(),
+        Metric::Minkowski(p) => d[0].abs().powf(L::cst(p)),
+    };
+    for &c in &d[1..] {
+        s = match metric {
+            Metric::Euclidean | Metric::EuclideanSquared => s + c * c,
+            Metric::Manhattan => s + c.abs(),
+            Metric::Chebyshev => s.max(c.abs()),
+            Metric::Minkowski(p) => s + c.abs().powf(L::cst(p)),
+        };
+    }
+    match metric {
+        Metric::Minkowski(p) => s.powf(L::cst(1.0 / p)),
+        _ => s,
+    }
+}
+
+/// The smallest and largest of some cells.
+#[inline(always)]
+fn cell_range(cells: &[i32]) -> (i32, i32) {
+    cells.iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)))
+}
+
+/// Base-3 digit `d` of `j`, as an offset −1, 0 or 1.
+#[inline(always)]
+fn digit(j: usize, d: usize) -> i32 {
+    ((j / 3usize.pow(d as u32)) % 3) as i32 - 1
+}
+
+/// A chunk's window on a row's feature points: columns `first..first +
+/// 2·WIDTH`, the first of them cell `origin`.
+struct Window<'a> {
+    features: &'a [f32],
+    stride: usize,
+    first: usize,
+    origin: i32,
+}
+
+impl Window<'_> {
+    /// Field `field` of the window's column `column` in each lane.
+    #[inline(always)]
+    fn lanes<B: BatchLanes>(&self, field: usize, column: B::Int) -> B {
+        let v = &self.features[field * self.stride + self.first..];
+        B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), column)
+    }
+}
+
+/// The k nearest so far (search keys, sorted), with F1/F2 ids and positions.
 struct Found<L: Lanes, const D: usize> {
     distance: [L; 4],
     id_lanes: [L::Int; 2],
@@ -279,6 +586,13 @@ struct Found<L: Lanes, const D: usize> {
 }
 
 impl<L: Lanes, const D: usize> Found<L, D> {
+    /// Nothing found yet.
+    #[inline(always)]
+    fn new() -> Self {
+        let far = L::cst(f64::INFINITY);
+        Found { distance: [far; 4], id_lanes: [L::Int::splat(0); 2], point: [[L::cst(0.0); D]; 2], id: [0; 2] }
+    }
+
     /// Insertion into the sorted list, branch-free: each slot keeps the
     /// smaller of itself and the carried candidate and passes the larger on.
     /// Ties keep the earlier point, so results do not depend on lane width.
@@ -308,23 +622,37 @@ macro_rules! impl_worley {
         impl Noise<$d> for Worley {
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                let f = self.search::<L, $d>(p, self.output.needs());
-                let [f1, f2, f3, f4] = f.distance;
-                let v = match self.output {
-                    CellOutput::F1 => f1,
-                    CellOutput::F2 => f2,
-                    CellOutput::F3 => f3,
-                    CellOutput::F4 => f4,
-                    CellOutput::F2MinusF1 => f2 - f1,
-                    CellOutput::Mean12 => (f1 + f2) * L::cst(0.5),
-                    CellOutput::Product12 => f1 * f2,
-                    CellOutput::CellValue => {
-                        L::from_int(f.id_lanes[0].shr(8)) * L::cst(1.0 / 8_388_608.0) - L::cst(1.0)
-                    }
-                };
-                super::finite_or_nan(p, v)
+                let found = self.search::<L, $d>(p, self.output.needs());
+                super::finite_or_nan(p, self.output(&found))
+            }
+
+            /// The grid path, through its own driver ([`GridPath`]).
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                fill_span_at(B::LEVEL, &GridPath(*self), span, out)
             }
         }
     )*};
 }
 impl_worley!(1, 2, 3, 4);
+
+/// Cellular noise whose grid fill is [`Worley::fill_span_grid`]. Worley's
+/// own `fill_span` hands spans to this noise's batch driver, so the grid
+/// path (large: 3^D candidates) is compiled once per dimension and
+/// instruction set, not inlined into every noise that contains a Worley.
+struct GridPath(Worley);
+
+impl<const D: usize> Noise<D> for GridPath
+where
+    Worley: Noise<D>,
+{
+    #[inline(always)]
+    fn sample<L: Lanes>(&self, p: [L; D]) -> L {
+        self.0.sample(p)
+    }
+
+    #[inline(always)]
+    fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
+        self.0.fill_span_grid::<B, D>(span, out)
+    }
+}

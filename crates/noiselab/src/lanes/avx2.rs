@@ -222,6 +222,7 @@ impl Lanes for X8 {
 }
 
 impl BatchLanes for X8 {
+    const LEVEL: crate::grid::SimdLevel = crate::grid::SimdLevel::Avx2;
     #[inline(always)]
     fn store(self, out: &mut [f32]) {
         let out = &mut out[..8];

@@ -215,6 +215,7 @@ impl Lanes for X16 {
 }
 
 impl BatchLanes for X16 {
+    const LEVEL: crate::grid::SimdLevel = crate::grid::SimdLevel::Avx512;
     #[inline(always)]
     fn store(self, out: &mut [f32]) {
         let out = &mut out[..16];

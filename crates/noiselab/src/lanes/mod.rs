@@ -137,6 +137,8 @@ pub trait Lanes:
 /// The lane types batches are evaluated in ([`F32x8`], [`F32x16`]): `f32`
 /// lanes that can also be stored and loaded in bulk.
 pub trait BatchLanes: Lanes<Elem = f32> {
+    /// The batch drivers' level whose clones use these lanes.
+    const LEVEL: crate::grid::SimdLevel;
     /// Write the lanes to `out[..WIDTH]`.
     fn store(self, out: &mut [f32]);
     /// Integer lanes 0, 1, …, WIDTH − 1.

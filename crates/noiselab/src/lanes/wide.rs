@@ -256,6 +256,7 @@ macro_rules! wide_lanes {
         }
 
         impl BatchLanes for $f {
+            const LEVEL: crate::grid::SimdLevel = crate::grid::SimdLevel::Baseline;
             #[inline(always)]
             fn store(self, out: &mut [f32]) {
                 out[..$n].copy_from_slice(&self.0);
