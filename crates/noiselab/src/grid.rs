@@ -176,6 +176,19 @@ pub struct Span<'a, const D: usize> {
 }
 
 impl<const D: usize> Span<'_, D> {
+    /// The columns (axis-0 indices) that `len` points from the span's
+    /// start touch, as a range `lo..hi`: the span's own columns when it
+    /// stays in one row, else every column.
+    #[inline(always)]
+    pub fn columns(&self, len: usize) -> (usize, usize) {
+        let nx = self.axes.size(0);
+        if nx == 0 {
+            return (0, 0);
+        }
+        let first = self.start % nx;
+        if first + len <= nx { (first, first + len) } else { (0, nx) }
+    }
+
     /// The (partial) grid rows that `len` points from the span's start
     /// cover, in order.
     #[inline(always)]
@@ -248,21 +261,26 @@ pub fn fill_pointwise<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, spa
         while k < n {
             let count = (n - k).min(w);
             let i = i0 + k;
-            p[0] = if count == w {
-                B::from_slice(&xs[i..i + w])
-            } else {
-                // Pad the tail with the last point; its lanes are discarded.
-                let mut pad = [0f32; 16];
-                for (j, x) in pad.iter_mut().enumerate().take(w) {
-                    *x = xs[i + j.min(count - 1)];
-                }
-                B::from_slice(&pad)
-            };
+            p[0] = row_lanes(xs, i, count);
             let v = noise.sample(p);
             store_prefix(v, &mut out[o0 + k..o0 + k + count]);
             k += count;
         }
     }
+}
+
+/// Coordinates `xs[i..i + count]` (`count` ≤ WIDTH) as lanes, a short
+/// tail padded with its last point (whose extra lanes are discarded).
+#[inline(always)]
+pub(crate) fn row_lanes<B: BatchLanes>(xs: &[f32], i: usize, count: usize) -> B {
+    if count == B::WIDTH {
+        return B::from_slice(&xs[i..i + count]);
+    }
+    let mut pad = [0f32; 16];
+    for (j, x) in pad.iter_mut().enumerate().take(B::WIDTH) {
+        *x = xs[i + j.min(count - 1)];
+    }
+    B::from_slice(&pad)
 }
 
 /// Store the first `out.len()` (≤ WIDTH) lanes of `v`.

@@ -362,8 +362,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         return;
     }
     // Columns this span touches.
-    let first = span.start % nx;
-    let (lo, hi) = if first + out.len() <= nx { (first, first + out.len()) } else { (0, nx) };
+    let (lo, hi) = span.columns(out.len());
 
     // Axis 0 once per span: cell, position and fade of each column.
     let cols = hi - lo;

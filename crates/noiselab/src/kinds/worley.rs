@@ -8,7 +8,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::{Period, PeriodError};
-use crate::grid::{fill_pointwise, fill_span_at, store_prefix, RowPiece, Span};
+use crate::grid::{fill_pointwise, fill_span_at, row_lanes, store_prefix, RowPiece, Span};
 use crate::hash::{fmix32, hash_cell};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use crate::noise::Noise;
@@ -355,8 +355,7 @@ impl Worley {
             return;
         }
         // The columns this span touches, and their cells.
-        let first = span.start % nx;
-        let (lo, hi) = if first + out.len() <= nx { (first, first + out.len()) } else { (0, nx) };
+        let (lo, hi) = span.columns(out.len());
         if !xs[lo..hi].iter().all(|x| x.abs() < 1e9) {
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
@@ -410,16 +409,7 @@ impl Worley {
             while k < n {
                 let count = (n - k).min(w);
                 let i = i0 + k;
-                p[0] = if count == w {
-                    B::from_slice(&xs[i..i + w])
-                } else {
-                    // Pad the tail with the last point; its lanes are discarded.
-                    let mut pad = [0f32; 16];
-                    for (j, x) in pad.iter_mut().enumerate().take(w) {
-                        *x = xs[i + j.min(count - 1)];
-                    }
-                    B::from_slice(&pad)
-                };
+                p[0] = row_lanes(xs, i, count);
                 let (a, b) = cell_range(&cells[i - lo..i - lo + count]);
                 // Columns a − 1 ..= b + 1 must fit two registers.
                 let v = if ((b - a) as usize) + 3 <= 2 * w {
