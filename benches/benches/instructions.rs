@@ -25,14 +25,8 @@ fn grid3() -> (Grid<3>, Vec<f32>) {
 }
 
 fn random_points() -> (Vec<[f32; 3]>, Vec<f32>) {
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u32 << 24) as f32 * 2000.0 - 1000.0
-    };
+    let mut rng = noiselab::hash::SplitMix64(0x9E37_79B9_7F4A_7C15);
+    let mut next = move || (rng.next() >> 40) as f32 / (1u32 << 24) as f32 * 2000.0 - 1000.0;
     let points: Vec<[f32; 3]> = (0..1 << 15).map(|_| [next(), next(), next()]).collect();
     let out = vec![0f32; points.len()];
     (points, out)

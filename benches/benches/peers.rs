@@ -488,14 +488,8 @@ fn grids_3d(c: &mut Criterion) {
 
 /// 4 M splitmix64 points in [−1000, 1000)³, in f64 and rounded to f32.
 fn random_points() -> Vec<[f64; 3]> {
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2000.0 - 1000.0
-    };
+    let mut rng = noiselab::hash::SplitMix64(0x9E37_79B9_7F4A_7C15);
+    let mut next = move || (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 2000.0 - 1000.0;
     (0..POINTS).map(|_| [next(), next(), next()]).collect()
 }
 
