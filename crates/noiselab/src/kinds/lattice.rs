@@ -318,7 +318,7 @@ impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
 /// The smallest and largest of some cells.
 #[inline(always)]
 fn cell_span(cells: &[i32]) -> (usize, usize) {
-    let (lo, hi) = cells.iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)));
+    let (lo, hi) = super::cell_range(cells);
     (lo as usize, hi as usize)
 }
 
@@ -381,7 +381,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         k += w;
     }
     // Runs of equal cells; cells numbered from the smallest.
-    let (min_cell, max_cell) = cell0[..cols].iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)));
+    let (min_cell, max_cell) = super::cell_range(&cell0[..cols]);
     let ncell = (max_cell as i64 - min_cell as i64 + 1) as usize;
     if ncell > 2 * cols + 64 {
         return fill_pointwise::<K, B, D>(kind, span, out);

@@ -83,6 +83,12 @@ pub(crate) fn is_finite<L: Lanes>(x: L) -> L::Mask {
     (x - x).le(L::cst(0.0))
 }
 
+/// The smallest and largest of some cells (of a grid row's columns).
+#[inline(always)]
+pub(crate) fn cell_range(cells: &[i32]) -> (i32, i32) {
+    cells.iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)))
+}
+
 /// `value` where every coordinate is finite, NaN elsewhere. Simplex kernels
 /// are radial, so an infinite coordinate would otherwise give a quiet 0; the
 /// library's contract is NaN for non-finite input.

@@ -7,7 +7,7 @@ use core::fmt;
 use alloc::vec;
 use alloc::vec::Vec;
 
-use super::{Period, PeriodError};
+use super::{cell_range, Period, PeriodError};
 use crate::grid::{fill_pointwise, fill_span_at, row_lanes, store_prefix, RowPiece, Span};
 use crate::hash::{fmix32, hash_cell};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
@@ -534,12 +534,6 @@ fn key_in<L: Lanes, const D: usize>(metric: Metric, d: &[L; D]) -> L {
         Metric::Minkowski(p) => s.powf(L::cst(1.0 / p)),
         _ => s,
     }
-}
-
-/// The smallest and largest of some cells.
-#[inline(always)]
-fn cell_range(cells: &[i32]) -> (i32, i32) {
-    cells.iter().fold((i32::MAX, i32::MIN), |(a, b), &c| (a.min(c), b.max(c)))
 }
 
 /// Base-3 digit `d` of `j`, as an offset −1, 0 or 1.
