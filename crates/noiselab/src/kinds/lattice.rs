@@ -23,7 +23,7 @@
 //!
 //! [`Noise::get_f32`]: crate::Noise::get_f32
 
-use super::{interpolate, interpolate_gradient, MAX_CORNERS};
+use super::{corner_bit, interpolate, interpolate_gradient, MAX_CORNERS};
 use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use alloc::vec;
@@ -89,7 +89,17 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
 
     /// The records of the corners of `cell`; corner `c` is the upper corner
     /// on axis `d` when bit `d` of `c` is set. Entries from 2^D on are unused.
+    /// A record must depend only on its lattice point (`cell` plus the
+    /// corner's bits, wrapping): the grid fill hashes each point once and
+    /// shares it between the cells that meet there.
     fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS];
+
+    /// The record of lattice point `at` (corner 0 of its cell; the other
+    /// corners' work is dead code once inlined).
+    #[inline(always)]
+    fn point<L: Lanes>(&self, at: [L::Int; D]) -> Corner<L> {
+        self.corners(at)[0]
+    }
 
     /// A corner's record with the offsets along axes 1.. folded in
     /// (`offset[0]` is not read).
@@ -205,40 +215,39 @@ pub(crate) fn sample_gradient<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K,
     (finish(kind, value), scaled)
 }
 
-/// Cells' records field by field: field k of cell c at `[k·stride + c]`,
-/// so consecutive cells load and store as lanes. Integer fields are stored
-/// as their bits.
+/// Records field by field, for consecutive lattice points (or cells) along
+/// axis 0: field k of entry e at `[k·stride + e]`, so consecutive entries
+/// load and store as lanes. Integer fields are stored as their bits.
 struct Columns {
     stride: usize,
     data: Vec<f32>,
 }
 
 impl Columns {
-    /// Room for `fields` fields of `cells` cells.
-    fn new(fields: usize, cells: usize) -> Self {
-        Columns { stride: cells, data: vec![0.0; fields * cells] }
+    /// Room for `fields` fields of `entries` entries.
+    fn new(fields: usize, entries: usize) -> Self {
+        Columns { stride: entries, data: vec![0.0; fields * entries] }
     }
 
-    /// Field `field` of cells `cell..cell + WIDTH`.
+    /// Field `field` of entries `at..at + WIDTH`.
     #[inline(always)]
-    fn load<B: BatchLanes>(&self, field: usize, cell: usize) -> B {
-        B::from_slice(&self.data[field * self.stride + cell..])
+    fn load<B: BatchLanes>(&self, field: usize, at: usize) -> B {
+        B::from_slice(&self.data[field * self.stride + at..])
     }
 
     #[inline(always)]
-    fn store<B: BatchLanes>(&mut self, field: usize, cell: usize, v: B) {
-        v.store(&mut self.data[field * self.stride + cell..]);
+    fn store<B: BatchLanes>(&mut self, field: usize, at: usize, v: B) {
+        v.store(&mut self.data[field * self.stride + at..]);
     }
 
-    /// Corner `c`'s record of cells `cell..cell + WIDTH` (`fields` per corner).
+    /// A record (`fields` of them, from field `base`) of entries `at..at + WIDTH`.
     #[inline(always)]
-    fn store_corner<B: BatchLanes>(&mut self, c: usize, cell: usize, r: &Corner<B>, fields: Fields) {
-        let base = c * fields.total();
+    fn store_record<B: BatchLanes>(&mut self, base: usize, at: usize, r: &Corner<B>, fields: Fields) {
         for m in 0..fields.floats {
-            self.store(base + m, cell, r.f[m]);
+            self.store(base + m, at, r.f[m]);
         }
         for m in 0..fields.ints {
-            self.store(base + fields.floats + m, cell, B::from_bits(r.i[m]));
+            self.store(base + fields.floats + m, at, B::from_bits(r.i[m]));
         }
     }
 }
@@ -247,38 +256,46 @@ impl Columns {
 /// closure that LLVM declines to inline would run outside the batch
 /// driver's instruction-set clone.)
 trait Source<B: BatchLanes> {
-    /// Field `k` (for every lane).
-    fn field(&self, k: usize) -> B;
+    /// Field `k` of each lane's entry, or (`next` = 1) of the entry after it.
+    fn field(&self, k: usize, next: usize) -> B;
 
-    /// Corner `c`'s record (`fields` per corner).
+    /// Corner `c`'s record, from lattice points stored as rows of records
+    /// (`fields` each): corner `c` is row `c / 2`, at the lane's cell's
+    /// lower point on axis 0 or (odd `c`) the next one.
     #[inline(always)]
     fn corner(&self, c: usize, fields: Fields) -> Corner<B> {
-        let base = c * fields.total();
+        self.record((c >> 1) * fields.total(), c & 1, fields)
+    }
+
+    /// The record from field `base` (`fields` of them), of each lane's
+    /// entry or the next.
+    #[inline(always)]
+    fn record(&self, base: usize, next: usize, fields: Fields) -> Corner<B> {
         let mut r = Corner::zero();
         for m in 0..fields.floats {
-            r.f[m] = self.field(base + m);
+            r.f[m] = self.field(base + m, next);
         }
         for m in 0..fields.ints {
-            r.i[m] = self.field(base + fields.floats + m).to_bits();
+            r.i[m] = self.field(base + fields.floats + m, next).to_bits();
         }
         r
     }
 }
 
-/// Consecutive cells from `first`, one per lane.
-struct CellBlock<'a> {
+/// Consecutive entries from `first`, one per lane.
+struct Block<'a> {
     columns: &'a Columns,
     first: usize,
 }
 
-impl<B: BatchLanes> Source<B> for CellBlock<'_> {
+impl<B: BatchLanes> Source<B> for Block<'_> {
     #[inline(always)]
-    fn field(&self, k: usize) -> B {
-        self.columns.load(k, self.first)
+    fn field(&self, k: usize, next: usize) -> B {
+        self.columns.load(k, self.first + next)
     }
 }
 
-/// Every lane in one cell: its fields, `stride` apart from its field 0.
+/// Every lane at one entry: its fields, `stride` apart from its field 0.
 struct OneCell<'a> {
     from: &'a [f32],
     stride: usize,
@@ -293,25 +310,25 @@ impl<'a> OneCell<'a> {
 
 impl<B: BatchLanes> Source<B> for OneCell<'_> {
     #[inline(always)]
-    fn field(&self, k: usize) -> B {
-        B::splat(self.from[k * self.stride])
+    fn field(&self, k: usize, next: usize) -> B {
+        B::splat(self.from[k * self.stride + next])
     }
 }
 
-/// Lanes in up to 2·WIDTH consecutive cells from `first`: each field is
-/// the two registers of those cells' values, permuted by `lane` (each
-/// lane's cell minus `first`).
+/// Lanes at up to 2·WIDTH consecutive entries from `first`: each field is
+/// the two registers of those entries' values, permuted by `lane[next]`
+/// (each lane's entry minus `first`, plus `next`).
 struct PerLane<'a, B: BatchLanes> {
     columns: &'a Columns,
     first: usize,
-    lane: B::Int,
+    lane: [B::Int; 2],
 }
 
 impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
     #[inline(always)]
-    fn field(&self, k: usize) -> B {
+    fn field(&self, k: usize, next: usize) -> B {
         let v = &self.columns.data[k * self.columns.stride + self.first..];
-        B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), self.lane)
+        B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), self.lane[next])
     }
 }
 
@@ -322,16 +339,16 @@ fn cell_span(cells: &[i32]) -> (usize, usize) {
     (lo as usize, hi as usize)
 }
 
-/// Lanes in any cells, each lane's fields gathered.
+/// Lanes at any entries, each lane's fields gathered (`at[next]`).
 struct Gathered<'a, B: BatchLanes> {
     columns: &'a Columns,
-    cells: B::Int,
+    at: [B::Int; 2],
 }
 
 impl<B: BatchLanes> Source<B> for Gathered<'_, B> {
     #[inline(always)]
-    fn field(&self, k: usize) -> B {
-        B::gather(&self.columns.data[k * self.columns.stride..], self.cells)
+    fn field(&self, k: usize, next: usize) -> B {
+        B::gather(&self.columns.data[k * self.columns.stride..], self.at[next])
     }
 }
 
@@ -345,9 +362,73 @@ struct Chunk {
     cell: usize,
 }
 
-/// The grid fill: corners hashed once per cell and grid plane, bound once
-/// per cell and row, evaluated per point. Falls back to point evaluation
-/// where cells are too sparse for that to pay (more cells than points).
+/// Rows of lattice points along axis 0 (point `v` of a row is cell
+/// `min_cell + v`'s lower corner), hashed once and kept while the planes
+/// of cells that use them go by: twice the rows one plane needs, so the
+/// rows it shares with the previous plane stay.
+struct PointRows<const D: usize> {
+    records: Columns,
+    /// Each slot's row: its cells on axes 1.. (`[0]` unused).
+    key: [Option<[i32; D]>; MAX_CORNERS],
+}
+
+impl<const D: usize> PointRows<D> {
+    /// The rows of a plane of cells (`1 << (D − 1)`).
+    const PER_PLANE: usize = 1 << (D - 1);
+
+    fn new(fields: Fields, points: usize) -> Self {
+        PointRows { records: Columns::new(2 * Self::PER_PLANE * fields.total(), points), key: [None; MAX_CORNERS] }
+    }
+
+    /// For each row of the plane of `cell` (row r: upper on axis d + 1 when
+    /// bit d of r is set), the slot holding it, hashing the rows not held.
+    #[inline(always)]
+    fn plane<K: Lattice<D>, B: BatchLanes>(
+        &mut self,
+        kind: &K,
+        cell: [i32; D],
+        min_cell: i32,
+        points: usize,
+    ) -> [usize; MAX_CORNERS / 2] {
+        let rows = Self::PER_PLANE;
+        let mut want = [[0i32; D]; MAX_CORNERS / 2];
+        for (r, key) in want.iter_mut().enumerate().take(rows) {
+            for d in 1..D {
+                key[d] = cell[d].wrapping_add(corner_bit(r, d - 1));
+            }
+        }
+        let mut slot_of = [0usize; MAX_CORNERS / 2];
+        for r in 0..rows {
+            if let Some(s) = (0..2 * rows).find(|&s| self.key[s] == Some(want[r])) {
+                slot_of[r] = s;
+                continue;
+            }
+            // A slot no row of this plane needs (there are at least `rows`).
+            let s = (0..2 * rows)
+                .find(|&s| !self.key[s].is_some_and(|k| want[..rows].contains(&k)))
+                .expect("twice the slots a plane needs");
+            let base = s * K::HASHED.total();
+            let mut v = 0;
+            while v < points {
+                let mut at = [B::Int::splat(0); D];
+                at[0] = B::iota().add(B::Int::splat(min_cell.wrapping_add(v as i32)));
+                for d in 1..D {
+                    at[d] = B::Int::splat(want[r][d]);
+                }
+                self.records.store_record(base, v, &kind.point::<B>(at), K::HASHED);
+                v += B::WIDTH;
+            }
+            self.key[s] = Some(want[r]);
+            slot_of[r] = s;
+        }
+        slot_of
+    }
+}
+
+/// The grid fill: each lattice point hashed once per row of points (kept
+/// across planes of cells), bound once per grid row, evaluated per grid
+/// point. Falls back to point evaluation where cells are too sparse for
+/// that to pay (more cells than points).
 #[inline(always)]
 pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
     kind: &K,
@@ -355,7 +436,6 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     out: &mut [f32],
 ) {
     let w = B::WIDTH;
-    let corners = 1usize << D;
     let xs = span.axes.axis(0);
     let nx = xs.len();
     if out.is_empty() || nx == 0 {
@@ -396,12 +476,17 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         }
     }
     let fast = span.accuracy == Accuracy::Fast;
-    let fields = if fast { 4 } else { (1 << D) * K::BOUND.total() };
     // Splat a cell's record over whole lanes when runs fill them; permute
     // per lane when they are short.
     let long_runs = cols >= runs.len() * w;
-    let ncp = ncell + 3 * w;
-    let mut bound = Columns::new(fields, ncp);
+    // Lattice points along axis 0: the cells' lower corners and one more.
+    let points = ncell + 1;
+    let room = points + 3 * w;
+    let rows = PointRows::<D>::PER_PLANE;
+    let mut point_rows = PointRows::<D>::new(K::HASHED, room);
+    let mut bound = Columns::new(rows * K::BOUND.total(), room);
+    // Fast: each cell's row polynomial.
+    let mut coef = Columns::new(if fast { 4 } else { 0 }, room);
     let mut chunks: Vec<Chunk> = Vec::new();
     let mut chunk_axis: Vec<ChunkAxis> = Vec::new();
     if long_runs {
@@ -419,11 +504,11 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     for (j, c) in cell0[..padded].iter_mut().enumerate() {
         *c = if j < cols { (*c).wrapping_sub(min_cell) } else { 0 };
     }
-    let mut hashed = Columns::new((1 << D) * K::HASHED.total(), ncp);
     // The smallest and largest cell of each aligned chunk of columns.
     let span_of: Vec<(usize, usize)> =
         if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(cell_span).collect() };
     let mut plane: Option<[i32; D]> = None;
+    let mut slot_of = [0usize; MAX_CORNERS / 2];
 
     for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         // Axes 1..: the same for the whole row.
@@ -434,54 +519,49 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
         }
         if plane != Some(cell) {
-            // A new plane of cells: hash the row's cells, a block of lanes at a time.
-            let mut k = 0;
-            while k < ncell {
-                let mut c = [B::Int::splat(0); D];
-                c[0] = B::iota().add(B::Int::splat(min_cell.wrapping_add(k as i32)));
-                for d in 1..D {
-                    c[d] = B::Int::splat(cell[d]);
-                }
-                let recs = kind.corners::<B>(c);
-                for (corner, r) in recs.iter().enumerate().take(corners) {
-                    hashed.store_corner(corner, k, r, K::HASHED);
-                }
-                k += w;
-            }
+            slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
             plane = Some(cell);
         }
-        // Bind the row's offsets to every cell's corners (or, fast, reduce
-        // them to the row polynomial), stored cell by cell.
+        // Bind the row's offsets to every point of the plane's rows.
         let mut weights = [B::splat(0.0); D];
         let mut fs = [B::splat(0.0); D];
         for d in 1..D {
             weights[d] = B::splat(kind.fade(f[d]));
             fs[d] = B::splat(f[d]);
         }
-        // Fast: the weight of each pair of corners along axis 0 in the
-        // blend over axes 1.. (pair k is upper on axis d + 1 when bit d of k is set).
-        let mut pair_weights = [B::cst(1.0); MAX_CORNERS / 2];
-        for (k, pw) in pair_weights.iter_mut().enumerate().take(corners / 2) {
-            for d in 1..D {
-                let s = weights[d];
-                *pw = *pw * if (k >> (d - 1)) & 1 == 1 { s } else { B::cst(1.0) - s };
+        for (r, &slot) in slot_of.iter().enumerate().take(rows) {
+            let (from, to) = (slot * K::HASHED.total(), r * K::BOUND.total());
+            let offset = offsets(fs, 2 * r);
+            let mut v = 0;
+            while v < points {
+                let point = Block { columns: &point_rows.records, first: v }.record(from, 0, K::HASHED);
+                bound.store_record(to, v, &kind.bind(point, offset), K::BOUND);
+                v += w;
             }
         }
-        let mut k = 0;
-        while k < ncell {
-            let cells = CellBlock { columns: &hashed, first: k };
-            if fast {
-                for (m, v) in polynomial(kind, &cells, fs, &pair_weights).into_iter().enumerate() {
-                    bound.store(m, k, v);
-                }
-            } else {
-                for c in 0..corners {
-                    let r = kind.bind(cells.corner(c, K::HASHED), offsets(fs, c));
-                    bound.store_corner(c, k, &r, K::BOUND);
+        if fast {
+            // Fast: the weight of each pair of corners along axis 0 in the
+            // blend over axes 1.. (pair k is upper on axis d + 1 when bit d
+            // of k is set), and each cell's row polynomial.
+            let mut pair_weights = [B::cst(1.0); MAX_CORNERS / 2];
+            for (k, pw) in pair_weights.iter_mut().enumerate().take(rows) {
+                for d in 1..D {
+                    let s = weights[d];
+                    *pw = *pw * if (k >> (d - 1)) & 1 == 1 { s } else { B::cst(1.0) - s };
                 }
             }
-            k += w;
+            let mut k = 0;
+            while k < ncell {
+                let cells = Block { columns: &bound, first: k };
+                for (m, v) in polynomial(kind, &cells, &pair_weights).into_iter().enumerate() {
+                    coef.store(m, k, v);
+                }
+                k += w;
+            }
         }
+        // Exact points read their cells' corners, fast ones their cells'
+        // polynomials.
+        let records = if fast { &coef } else { &bound };
 
         // The points: for each run of columns in one cell, whole lanes.
         // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
@@ -495,14 +575,14 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             (true, false) if whole => {
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    let v = row.exact_at(kind, x, fade, &OneCell::new(&bound, ch.cell));
+                    let v = row.exact_at(kind, x, fade, &OneCell::new(records, ch.cell));
                     emit(v, &mut out[o0 + ch.start..]);
                 }
             }
             (true, true) if whole => {
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    emit(poly_at::<K, B, D>(x, fade, &OneCell::new(&bound, ch.cell)), &mut out[o0 + ch.start..]);
+                    emit(poly_at::<K, B, D>(x, fade, &OneCell::new(records, ch.cell)), &mut out[o0 + ch.start..]);
                 }
             }
             // Part of a row: chunks clipped to it.
@@ -510,7 +590,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
-                        let rec = OneCell::new(&bound, ch.cell);
+                        let rec = OneCell::new(records, ch.cell);
                         emit(row.exact(kind, s, &rec), &mut out[o0 + s - a0..]);
                     }
                 }
@@ -519,7 +599,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
-                        let coef = OneCell::new(&bound, ch.cell);
+                        let coef = OneCell::new(records, ch.cell);
                         emit(row.poly::<K>(s, &coef), &mut out[o0 + s - a0..]);
                     }
                 }
@@ -530,13 +610,14 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     // The chunk's cells (lanes past the columns are discarded).
                     let (first, last) = if s % w == 0 { span_of[s / w] } else { cell_span(&cell0[s..(s + w).min(cols)]) };
                     let cells = B::load_int(&cell0[s..]);
-                    let lane = cells.sub(B::Int::splat(first as i32));
-                    let v = if last.wrapping_sub(first) < 2 * w {
-                        let rec = PerLane { columns: &bound, first, lane };
+                    // Corners read a cell's entry and the next one.
+                    let v = if last - first + 1 < 2 * w {
+                        let lane = cells.sub(B::Int::splat(first as i32));
+                        let rec = PerLane { columns: records, first, lane: [lane, lane.add_c(1)] };
                         if fast { row.poly::<K>(s, &rec) } else { row.exact(kind, s, &rec) }
                     } else {
                         // Far-apart cells (uneven or descending steps): one by one.
-                        let rec = Gathered { columns: &bound, cells };
+                        let rec = Gathered { columns: records, at: [cells, cells.add_c(1)] };
                         if fast { row.poly::<K>(s, &rec) } else { row.exact(kind, s, &rec) }
                     };
                     emit(v, &mut out[o0 + s - a0..]);
@@ -587,9 +668,9 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
 fn poly_at<K: Lattice<D>, B: BatchLanes, const D: usize>(x: B, fade: B, coef: &impl Source<B>) -> B {
     if K::FLAT {
         // Flat corners: the affine parts are constants.
-        coef.field(0) + fade * coef.field(2)
+        coef.field(0, 0) + fade * coef.field(2, 0)
     } else {
-        (coef.field(0) + coef.field(1) * x) + fade * (coef.field(2) + coef.field(3) * x)
+        (coef.field(0, 0) + coef.field(1, 0) * x) + fade * (coef.field(2, 0) + coef.field(3, 0) * x)
     }
 }
 
@@ -616,21 +697,21 @@ fn emit<B: BatchLanes>(v: B, out: &mut [f32]) {
 }
 
 /// [`Accuracy::Fast`]'s coefficients for a block of cells: the row inside
-/// each cell is `(p₀ + p₁·u) + s(u)·(q₀ + q₁·u)`, from the bound corners
-/// (`eval` is affine in u) weighted by the row's fixed blend over axes 1...
+/// each cell is `(p₀ + p₁·u) + s(u)·(q₀ + q₁·u)`, from the cells' bound
+/// corners (`eval` is affine in u) weighted by the row's fixed blend over
+/// axes 1...
 #[inline(always)]
 fn polynomial<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
-    hashed: &impl Source<B>,
-    fs: [B; D],
+    bound: &impl Source<B>,
     pair_weights: &[B; MAX_CORNERS / 2],
 ) -> [B; 4] {
     let mut sum = [B::cst(0.0); 4];
     for k in 0..(1 << (D - 1)) {
         // Corners 2k and 2k + 1 differ on axis 0: A(u) = a + b·u (lower
         // corner, offset u) and B(u) − A(u) = c + d·u (upper, offset u − 1).
-        let lo = kind.bind(hashed.corner(2 * k, K::HASHED), offsets(fs, 2 * k));
-        let up = kind.bind(hashed.corner(2 * k + 1, K::HASHED), offsets(fs, 2 * k + 1));
+        let lo = bound.corner(2 * k, K::BOUND);
+        let up = bound.corner(2 * k + 1, K::BOUND);
         let a = kind.eval(&lo, B::cst(0.0));
         let b = kind.eval(&lo, B::cst(1.0)) - a;
         let up0 = kind.eval(&up, B::cst(0.0));
