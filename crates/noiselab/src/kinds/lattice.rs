@@ -547,7 +547,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             for (k, pw) in pair_weights.iter_mut().enumerate().take(rows) {
                 for d in 1..D {
                     let s = weights[d];
-                    *pw = *pw * if (k >> (d - 1)) & 1 == 1 { s } else { B::cst(1.0) - s };
+                    *pw = *pw * if corner_bit(k, d - 1) == 1 { s } else { B::cst(1.0) - s };
                 }
             }
             let mut k = 0;
