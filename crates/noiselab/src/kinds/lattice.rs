@@ -332,6 +332,27 @@ impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
     }
 }
 
+/// Runs of equal cells among columns, as (start, end, cell − `min_cell`);
+/// whole lanes of one cell are passed over at once.
+fn cell_runs(cells: &[i32], min_cell: i32, w: usize) -> Vec<(usize, usize, usize)> {
+    let mut runs = Vec::new();
+    let mut start = 0;
+    while start < cells.len() {
+        let cell = cells[start];
+        let mut end = start + 1;
+        // Branch-free over a lane's worth of columns, so it vectorises.
+        while end + w <= cells.len() && cells[end..end + w].iter().fold(true, |all, &c| all & (c == cell)) {
+            end += w;
+        }
+        while end < cells.len() && cells[end] == cell {
+            end += 1;
+        }
+        runs.push((start, end, (cell as i64 - min_cell as i64) as usize));
+        start = end;
+    }
+    runs
+}
+
 /// The smallest and largest of some cells.
 #[inline(always)]
 fn cell_span(cells: &[i32]) -> (usize, usize) {
@@ -450,11 +471,16 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     let (mut cell0, mut frac0, mut fade0) = (vec![0i32; padded], vec![0f32; padded], vec![0f32; padded]);
     let mut k = 0;
     while k < cols {
-        let mut xk = [0f32; 16];
-        for (j, x) in xk.iter_mut().enumerate().take(w) {
-            *x = xs[lo + (k + j).min(cols - 1)];
-        }
-        let (c, f) = kind.split(B::from_slice(&xk));
+        let x = if k + w <= cols {
+            B::from_slice(&xs[lo + k..])
+        } else {
+            let mut xk = [0f32; 16];
+            for (j, x) in xk.iter_mut().enumerate().take(w) {
+                *x = xs[lo + (k + j).min(cols - 1)];
+            }
+            B::from_slice(&xk)
+        };
+        let (c, f) = kind.split(x);
         B::store_int(c, &mut cell0[k..]);
         f.store(&mut frac0[k..]);
         kind.fade(f).store(&mut fade0[k..]);
@@ -467,14 +493,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         return fill_pointwise::<K, B, D>(kind, span, out);
     }
     // Runs of columns in one cell, as (start, end, cell).
-    let mut runs: Vec<(usize, usize, usize)> = Vec::new();
-    for (j, &c) in cell0[..cols].iter().enumerate() {
-        let cell = (c as i64 - min_cell as i64) as usize;
-        match runs.last_mut() {
-            Some(r) if r.2 == cell => r.1 = j + 1,
-            _ => runs.push((j, j + 1, cell)),
-        }
-    }
+    let runs = cell_runs(&cell0[..cols], min_cell, w);
     let fast = span.accuracy == Accuracy::Fast;
     // Splat a cell's record over whole lanes when runs fill them; permute
     // per lane when they are short.
