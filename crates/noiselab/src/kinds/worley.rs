@@ -411,15 +411,13 @@ impl Worley {
                 let i = i0 + k;
                 p[0] = row_lanes(xs, i, count);
                 let (a, b) = cell_range(&cells[i - lo..i - lo + count]);
-                // Columns a − 1 ..= b + 1 must fit two registers.
-                let v = if ((b - a) as usize) + 3 <= 2 * w {
-                    let near = Window { features: &features, stride, first: (a - min_cell) as usize, origin: a - 1 };
-                    // F1 alone (the common case) with k a constant: the
-                    // nearest then lives in a register.
-                    match self.output.needs() {
-                        1 => self.chunk::<B, D>(p, &near, 1),
-                        k => self.chunk::<B, D>(p, &near, k),
-                    }
+                let first = (a - min_cell) as usize;
+                let v = if a == b {
+                    // One cell: every lane reads the same feature points.
+                    self.chunk_k::<B, D>(p, &OneCell { features: &features, stride, first, origin: a - 1 })
+                } else if ((b - a) as usize) + 3 <= 2 * w {
+                    // Columns a − 1 ..= b + 1 fit two registers.
+                    self.chunk_k::<B, D>(p, &Window { features: &features, stride, first, origin: a - 1 })
                 } else {
                     None
                 };
@@ -430,13 +428,24 @@ impl Worley {
         }
     }
 
+    /// [`Worley::chunk`] keeping as many distances as the output needs.
+    #[inline(always)]
+    fn chunk_k<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &impl Near) -> Option<B> {
+        // F1 alone (the common case) with k a constant: the nearest then
+        // lives in a register.
+        match self.output.needs() {
+            1 => self.chunk::<B, D>(p, near, 1),
+            k => self.chunk::<B, D>(p, near, k),
+        }
+    }
+
     /// One chunk from a row's feature points: `search` over rings 0 and 1
     /// (the same candidates in the same order), or `None` where some lane
     /// needs ring 2. `k` is the number of distances kept.
     #[inline(always)]
-    fn chunk<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &Window<'_>, k: usize) -> Option<B> {
+    fn chunk<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &impl Near, k: usize) -> Option<B> {
         let (base, frac, edge) = Self::split(p);
-        let column = base[0].sub(B::Int::splat(near.origin));
+        let column = base[0].sub(B::Int::splat(near.origin()));
         let columns = [column.add_c(-1), column, column.add_c(1)];
         let planes = 3usize.pow(D as u32 - 1);
         let centre = planes / 2;
@@ -488,7 +497,7 @@ impl Worley {
         frac: [B; D],
         columns: &[B::Int; 3],
         j: usize,
-        near: &Window<'_>,
+        near: &impl Near,
     ) -> Three<B, D> {
         let field = j * (D + 1);
         let mut d = [[B::splat(0.0); D]; 3];
@@ -497,10 +506,10 @@ impl Worley {
         for c in 0..3 {
             for a in 0..D {
                 let o = if a == 0 { c as i32 - 1 } else { digit(j, a - 1) };
-                d[c][a] = Self::reach(o, near.lanes::<B>(field + a, columns[c]), frac[a]);
+                d[c][a] = Self::reach(o, near.lanes::<B>(field + a, c, columns[c]), frac[a]);
                 points[c][a] = p[a] + d[c][a];
             }
-            ids[c] = near.lanes::<B>(field + D, columns[c]).to_bits();
+            ids[c] = near.lanes::<B>(field + D, c, columns[c]).to_bits();
         }
         Three { keys: self.keys(&d), ids, points }
     }
@@ -542,6 +551,15 @@ fn digit(j: usize, d: usize) -> i32 {
     ((j / 3usize.pow(d as u32)) % 3) as i32 - 1
 }
 
+/// Where a chunk's lanes find the feature points of the cells around them.
+trait Near {
+    /// The cell of the window's column 0.
+    fn origin(&self) -> i32;
+    /// Field `field` of each lane's cell `c` − 1 along axis 0 (`column`:
+    /// that cell's column in the window).
+    fn lanes<B: BatchLanes>(&self, field: usize, c: usize, column: B::Int) -> B;
+}
+
 /// A chunk's window on a row's feature points: columns `first..first +
 /// 2·WIDTH`, the first of them cell `origin`.
 struct Window<'a> {
@@ -551,12 +569,35 @@ struct Window<'a> {
     origin: i32,
 }
 
-impl Window<'_> {
-    /// Field `field` of the window's column `column` in each lane.
+impl Near for Window<'_> {
     #[inline(always)]
-    fn lanes<B: BatchLanes>(&self, field: usize, column: B::Int) -> B {
+    fn origin(&self) -> i32 {
+        self.origin
+    }
+    #[inline(always)]
+    fn lanes<B: BatchLanes>(&self, field: usize, _c: usize, column: B::Int) -> B {
         let v = &self.features[field * self.stride + self.first..];
         B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), column)
+    }
+}
+
+/// A chunk whose lanes all lie in one cell: column `first` is its cell − 1
+/// (cell `origin`), and every lane reads the same feature points.
+struct OneCell<'a> {
+    features: &'a [f32],
+    stride: usize,
+    first: usize,
+    origin: i32,
+}
+
+impl Near for OneCell<'_> {
+    #[inline(always)]
+    fn origin(&self) -> i32 {
+        self.origin
+    }
+    #[inline(always)]
+    fn lanes<B: BatchLanes>(&self, field: usize, c: usize, _column: B::Int) -> B {
+        B::splat(self.features[field * self.stride + self.first + c])
     }
 }
 
