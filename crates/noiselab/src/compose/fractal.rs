@@ -157,8 +157,33 @@ impl<L: Lanes, const D: usize> Arith for Dual<L, D> {
 pub struct Fractal<N> {
     octaves: Vec<N>,
     mode: FractalMode,
-    lacunarity: f64,
-    gain: f64,
+    steps: Steps,
+}
+
+/// The octave loop's constants, formed once: octave i's frequency
+/// lacunarityⁱ and amplitude gainⁱ (each by repeated multiplication), and
+/// 1 / Σ gainⁱ.
+#[derive(Clone, Debug)]
+struct Steps {
+    frequency: [f64; MAX_OCTAVES as usize],
+    amplitude: [f64; MAX_OCTAVES as usize],
+    scale: f64,
+}
+
+impl Steps {
+    fn new(octaves: usize, lacunarity: f64, gain: f64) -> Steps {
+        let mut steps = Steps { frequency: [0.0; MAX_OCTAVES as usize], amplitude: [0.0; MAX_OCTAVES as usize], scale: 0.0 };
+        let (mut frequency, mut amplitude, mut total) = (1.0, 1.0, 0.0);
+        for i in 0..octaves {
+            steps.frequency[i] = frequency;
+            steps.amplitude[i] = amplitude;
+            total += amplitude;
+            frequency *= lacunarity;
+            amplitude *= gain;
+        }
+        steps.scale = 1.0 / total;
+        steps
+    }
 }
 
 /// What a fractal's constructor tells the function that makes octave i.
@@ -219,7 +244,7 @@ impl<N> Fractal<N> {
         let octaves = (0..octaves)
             .map(|i| make(Octave { index: i, seed: seed.wrapping_add(i), frequency: libm::pow(lacunarity, i as f64) }))
             .collect();
-        Ok(Fractal { octaves, mode, lacunarity, gain })
+        Fractal::from_octaves(octaves, mode, lacunarity, gain)
     }
 
     /// From octaves already made (octave i read at lacunarityⁱ·p), e.g.
@@ -234,7 +259,8 @@ impl<N> Fractal<N> {
         if !(gain.is_finite() && gain > 0.0) {
             return Err(ComposeError::Gain(gain));
         }
-        Ok(Fractal { octaves, mode, lacunarity, gain })
+        let steps = Steps::new(octaves.len(), lacunarity, gain);
+        Ok(Fractal { octaves, mode, steps })
     }
 
     /// Perlin's rule from the talk: stop before an octave would vary faster
@@ -263,11 +289,11 @@ impl<N> Fractal<N> {
     /// gives octave i's noise (value or value + gradient).
     #[inline(always)]
     fn combine<T: Arith>(&self, octaves: &impl Octaves<T>) -> T {
-        let (mut amplitude, mut frequency, mut total) = (1.0, 1.0, 0.0);
         let mut sum = T::cst(0.0);
         let mut weight = T::cst(1.0);
         for i in 0..self.octaves.len() {
-            let n = octaves.octave(i, frequency);
+            let amplitude = self.steps.amplitude[i];
+            let n = octaves.octave(i, self.steps.frequency[i]);
             let term = match self.mode {
                 FractalMode::Fbm => n,
                 FractalMode::Turbulence => n.abs(),
@@ -284,24 +310,18 @@ impl<N> Fractal<N> {
                         weight = signal;
                         signal
                     } else {
+                        // Hybrid applies its own amplitude inside the weight.
                         let w = weight.min_one();
                         let s = signal.scale(amplitude);
                         weight = w.mul(s);
-                        // Hybrid applies its own amplitude inside the weight.
                         sum = sum.add(w.mul(s));
-                        total += amplitude;
-                        amplitude *= self.gain;
-                        frequency *= self.lacunarity;
                         continue;
                     }
                 }
             };
             sum = sum.add(term.scale(amplitude));
-            total += amplitude;
-            amplitude *= self.gain;
-            frequency *= self.lacunarity;
         }
-        sum.scale(1.0 / total)
+        sum.scale(self.steps.scale)
     }
 }
 
@@ -392,14 +412,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
     fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
         let w = B::WIDTH;
         let nx = span.axes.size(0).max(1);
-        let mut frequency = 1.0;
-        let scaled: Vec<Axes<D>> = (0..self.octaves.len())
-            .map(|_| {
-                let a = span.axes.scaled(frequency as f32);
-                frequency *= self.lacunarity;
-                a
-            })
-            .collect();
+        let scaled: Vec<Axes<D>> = self.steps.frequency[..self.octaves.len()].iter().map(|&f| span.axes.scaled(f as f32)).collect();
         // Whole rows per block where rows are short, so octaves see whole rows.
         let block = if nx < BLOCK { BLOCK / nx * nx } else { BLOCK };
         let mut buffers: Vec<Vec<f32>> = (0..self.octaves.len()).map(|_| vec![0.0; block + w]).collect();

@@ -332,6 +332,12 @@ impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
     }
 }
 
+/// How many runs of equal cells the columns have.
+fn run_count(cells: &[i32]) -> usize {
+    // Branch-free, so it vectorises.
+    1 + cells.windows(2).map(|pair| usize::from(pair[0] != pair[1])).sum::<usize>()
+}
+
 /// Runs of equal cells among columns, as (start, end, cell − `min_cell`);
 /// whole lanes of one cell are passed over at once.
 fn cell_runs(cells: &[i32], min_cell: i32, w: usize) -> Vec<(usize, usize, usize)> {
@@ -492,12 +498,12 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     if ncell > 2 * cols + 64 {
         return fill_pointwise::<K, B, D>(kind, span, out);
     }
-    // Runs of columns in one cell, as (start, end, cell).
-    let runs = cell_runs(&cell0[..cols], min_cell, w);
     let fast = span.accuracy == Accuracy::Fast;
-    // Splat a cell's record over whole lanes when runs fill them; permute
-    // per lane when they are short.
-    let long_runs = cols >= runs.len() * w;
+    // Splat a cell's record over whole lanes when runs of columns in one
+    // cell fill them; permute per lane when they are short.
+    let long_runs = cols >= run_count(&cell0[..cols]) * w;
+    // Runs of columns in one cell, as (start, end, cell), where they are used.
+    let runs = if long_runs { cell_runs(&cell0[..cols], min_cell, w) } else { Vec::new() };
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
     let room = points + 3 * w;
