@@ -108,8 +108,9 @@ pub enum Accuracy {
     Exact,
     /// Lattice kinds (classic, improved, value, modified) and fractals of
     /// them evaluate each grid row as a polynomial per lattice cell: within
-    /// 1e-6 of [`Accuracy::Exact`] (absolute, tested), and faster. Other
-    /// kinds fill exactly.
+    /// 1e-6 of [`Accuracy::Exact`] (absolute, tested), and faster. Where a
+    /// row's cells are narrower than a SIMD register's worth of points (a
+    /// fractal's fine octaves), and for other kinds, the fill is exact.
     Fast,
 }
 

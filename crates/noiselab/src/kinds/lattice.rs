@@ -498,10 +498,13 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     if ncell > 2 * cols + 64 {
         return fill_pointwise::<K, B, D>(kind, span, out);
     }
-    let fast = span.accuracy == Accuracy::Fast;
     // Splat a cell's record over whole lanes when runs of columns in one
     // cell fill them; permute per lane when they are short.
     let long_runs = cols >= run_count(&cell0[..cols]) * w;
+    // Fast: a polynomial per cell and row pays where cells hold whole lanes
+    // of points; where they are narrower, building it costs more than the
+    // exact evaluation it saves, so the fill is exact there.
+    let fast = span.accuracy == Accuracy::Fast && long_runs;
     // Runs of columns in one cell, as (start, end, cell), where they are used.
     let runs = if long_runs { cell_runs(&cell0[..cols], min_cell, w) } else { Vec::new() };
     // Lattice points along axis 0: the cells' lower corners and one more.
