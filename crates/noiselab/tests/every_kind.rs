@@ -147,6 +147,8 @@ fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         Grid::new([-2.125; D], [0.0625; D], size(37, rest)),
         Grid::new([0.0; D], [1.0 / 32.0; D], size(70, rest)),
         Grid::new([3.3; D], [0.7; D], size(41, rest)),
+        // One cell per column: each lane in the next cell.
+        Grid::new([-3.37; D], [1.0; D], size(45, rest)),
         Grid::new([1.0; D], [-0.015625; D], size(130, 2)),
         Grid::new([0.5; D], [0.0; D], size(19, 2)),
         Grid::new([-70000.37; D], [0.11; D], size(40, 2)),

@@ -359,6 +359,23 @@ fn cell_runs(cells: &[i32], min_cell: i32, w: usize) -> Vec<(usize, usize, usize
     runs
 }
 
+/// A chunk of columns' cells: the smallest and largest, and whether they are
+/// `first, first + 1, …` column by column (`count` columns).
+#[derive(Clone, Copy)]
+struct ChunkCells {
+    first: usize,
+    last: usize,
+    consecutive: bool,
+    count: usize,
+}
+
+fn chunk_cells(cells: &[i32]) -> ChunkCells {
+    let (first, last) = cell_span(cells);
+    // Branch-free, so it vectorises.
+    let consecutive = cells.iter().enumerate().fold(true, |all, (j, &c)| all & (c as usize == first + j));
+    ChunkCells { first, last, consecutive, count: cells.len() }
+}
+
 /// The smallest and largest of some cells.
 #[inline(always)]
 fn cell_span(cells: &[i32]) -> (usize, usize) {
@@ -532,9 +549,8 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     for (j, c) in cell0[..padded].iter_mut().enumerate() {
         *c = if j < cols { (*c).wrapping_sub(min_cell) } else { 0 };
     }
-    // The smallest and largest cell of each aligned chunk of columns.
-    let span_of: Vec<(usize, usize)> =
-        if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(cell_span).collect() };
+    // Each aligned chunk of columns' cells, for the per-lane path.
+    let span_of: Vec<ChunkCells> = if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(chunk_cells).collect() };
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
 
@@ -632,21 +648,24 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     }
                 }
             }
-            (false, fast) => {
+            // Short runs (fast fills are exact here): lanes read their own cells.
+            (false, _) => {
                 let mut s = a0;
                 while s < a1 {
                     // The chunk's cells (lanes past the columns are discarded).
-                    let (first, last) = if s % w == 0 { span_of[s / w] } else { cell_span(&cell0[s..(s + w).min(cols)]) };
-                    let cells = B::load_int(&cell0[s..]);
+                    let cells = if s % w == 0 { span_of[s / w] } else { chunk_cells(&cell0[s..(s + w).min(cols)]) };
+                    let (first, last) = (cells.first, cells.last);
                     // Corners read a cell's entry and the next one.
-                    let v = if last - first + 1 < 2 * w {
-                        let lane = cells.sub(B::Int::splat(first as i32));
-                        let rec = PerLane { columns: records, first, lane: [lane, lane.add_c(1)] };
-                        if fast { row.poly::<K>(s, &rec) } else { row.exact(kind, s, &rec) }
+                    let v = if cells.consecutive && cells.count == w {
+                        // Lane j in cell first + j: plain loads, no permutes.
+                        row.exact(kind, s, &Block { columns: records, first })
+                    } else if last - first + 1 < 2 * w {
+                        let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
+                        row.exact(kind, s, &PerLane { columns: records, first, lane: [lane, lane.add_c(1)] })
                     } else {
                         // Far-apart cells (uneven or descending steps): one by one.
-                        let rec = Gathered { columns: records, at: [cells, cells.add_c(1)] };
-                        if fast { row.poly::<K>(s, &rec) } else { row.exact(kind, s, &rec) }
+                        let at = B::load_int(&cell0[s..]);
+                        row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] })
                     };
                     emit(v, &mut out[o0 + s - a0..]);
                     s += w;
