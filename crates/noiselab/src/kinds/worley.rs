@@ -411,13 +411,13 @@ impl Worley {
                 let i = i0 + k;
                 p[0] = row_lanes(xs, i, count);
                 let (a, b) = cell_range(&cells[i - lo..i - lo + count]);
-                let first = (a - min_cell) as usize;
+                let window = Window { features: &features, stride, first: (a - min_cell) as usize, origin: a - 1 };
                 let v = if a == b {
                     // One cell: every lane reads the same feature points.
-                    self.chunk_k::<B, D>(p, &OneCell { features: &features, stride, first, origin: a - 1 })
+                    self.chunk_k::<B, D>(p, &OneCell(window))
                 } else if ((b - a) as usize) + 3 <= 2 * w {
                     // Columns a − 1 ..= b + 1 fit two registers.
-                    self.chunk_k::<B, D>(p, &Window { features: &features, stride, first, origin: a - 1 })
+                    self.chunk_k::<B, D>(p, &window)
                 } else {
                     None
                 };
@@ -581,23 +581,19 @@ impl Near for Window<'_> {
     }
 }
 
-/// A chunk whose lanes all lie in one cell: column `first` is its cell − 1
-/// (cell `origin`), and every lane reads the same feature points.
-struct OneCell<'a> {
-    features: &'a [f32],
-    stride: usize,
-    first: usize,
-    origin: i32,
-}
+/// A window whose chunk lies in one cell (column 1 of the window): every
+/// lane reads the same feature points.
+struct OneCell<'a>(Window<'a>);
 
 impl Near for OneCell<'_> {
     #[inline(always)]
     fn origin(&self) -> i32 {
-        self.origin
+        self.0.origin
     }
     #[inline(always)]
     fn lanes<B: BatchLanes>(&self, field: usize, c: usize, _column: B::Int) -> B {
-        B::splat(self.features[field * self.stride + self.first + c])
+        let w = &self.0;
+        B::splat(w.features[field * w.stride + w.first + c])
     }
 }
 
