@@ -194,30 +194,32 @@ impl Worley {
         key_in(self.metric, d)
     }
 
-    /// [`Worley::key`] of several offsets, the metric dispatched once: in
-    /// each arm the metric is a constant, so the calls fold to its formula.
+    /// The search keys of candidates whose offsets along axis 0 are `d0`
+    /// and whose [`term`]s along axes 1.. are `rest` (`rest[_][0]` unused),
+    /// the metric dispatched once: in each arm the metric is a constant, so
+    /// the calls fold to its formula. The same operations as [`key_in`].
     #[inline(always)]
-    fn keys<L: Lanes, const D: usize, const N: usize>(&self, d: &[[L; D]; N]) -> [L; N] {
+    fn keys<L: Lanes, const D: usize, const N: usize>(&self, d0: [L; N], rest: &[[L; D]; N]) -> [L; N] {
         let mut keys = [L::cst(0.0); N];
         match self.metric {
             Metric::Euclidean | Metric::EuclideanSquared => {
-                for (key, d) in keys.iter_mut().zip(d) {
-                    *key = key_in(Metric::EuclideanSquared, d);
+                for c in 0..N {
+                    keys[c] = key_along(Metric::EuclideanSquared, d0[c], rest[c]);
                 }
             }
             Metric::Manhattan => {
-                for (key, d) in keys.iter_mut().zip(d) {
-                    *key = key_in(Metric::Manhattan, d);
+                for c in 0..N {
+                    keys[c] = key_along(Metric::Manhattan, d0[c], rest[c]);
                 }
             }
             Metric::Chebyshev => {
-                for (key, d) in keys.iter_mut().zip(d) {
-                    *key = key_in(Metric::Chebyshev, d);
+                for c in 0..N {
+                    keys[c] = key_along(Metric::Chebyshev, d0[c], rest[c]);
                 }
             }
             Metric::Minkowski(q) => {
-                for (key, d) in keys.iter_mut().zip(d) {
-                    *key = key_in(Metric::Minkowski(q), d);
+                for c in 0..N {
+                    keys[c] = key_along(Metric::Minkowski(q), d0[c], rest[c]);
                 }
             }
         }
@@ -272,7 +274,14 @@ impl Worley {
     /// feature point of the cell `o` cells away, displaced by `t`.
     #[inline(always)]
     fn reach<L: Lanes>(o: i32, t: L, frac: L) -> L {
-        L::cst(o as f64) + L::cst(0.5) + t - frac
+        Self::lead(o, t) - frac
+    }
+
+    /// [`Worley::reach`] before the point's position is subtracted: the
+    /// feature point's offset from the lower face of the point's cell.
+    #[inline(always)]
+    fn lead<L: Lanes>(o: i32, t: L) -> L {
+        L::cst(o as f64) + L::cst(0.5) + t
     }
 
     /// The output from the nearest keys (and F1's id).
@@ -365,13 +374,12 @@ impl Worley {
         if ncell > 2 * (hi - lo) + 64 {
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
-        // Feature points of cells min_cell − 1 ..= max_cell + 1 (column c
-        // is cell min_cell − 1 + c) in each row of cells around the grid
-        // row: field j·(D + 1) + a is the displacement along axis a of row
-        // j's cells, field j·(D + 1) + D their ids' bits.
+        // The feature points of cells min_cell − 1 ..= max_cell + 1 (column
+        // c is cell min_cell − 1 + c) in each row of cells around the grid
+        // row, laid out by `Features`.
         let rows = 3usize.pow(D as u32 - 1);
         let stride = ncell + 2 + 2 * w;
-        let mut features = vec![0f32; rows * (D + 1) * stride];
+        let mut features = vec![0f32; rows * Features::<D>::PER_ROW * stride];
         let mut plane: Option<[i32; D]> = None;
 
         for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
@@ -380,7 +388,7 @@ impl Worley {
             for a in 1..D {
                 p[a] = B::splat(span.axes.axis(a)[idx[a]]);
             }
-            let row_base = Self::split(p).0;
+            let (row_base, row_frac, _) = Self::split(p);
             let mut row_cell = [0i32; D];
             for a in 1..D {
                 row_cell[a] = row_base[a].lane(0);
@@ -395,15 +403,30 @@ impl Worley {
                     while c < ncell + 2 {
                         cell[0] = B::iota().add(B::Int::splat(min_cell.wrapping_sub(1).wrapping_add(c as i32)));
                         let id = self.cell_id(cell);
-                        let field = j * (D + 1);
-                        for a in 0..D {
-                            self.jitter_along::<B>(id, a).store(&mut features[(field + a) * stride + c..]);
+                        let t0 = self.jitter_along::<B>(id, 0);
+                        for (o, lead) in [-1, 0, 1].into_iter().enumerate() {
+                            Self::lead(lead, t0).store(&mut features[Features::<D>::lead(j, o) * stride + c..]);
                         }
-                        B::from_bits(id).store(&mut features[(field + D) * stride + c..]);
+                        for a in 1..D {
+                            self.jitter_along::<B>(id, a).store(&mut features[Features::<D>::jitter(j, a) * stride + c..]);
+                        }
+                        B::from_bits(id).store(&mut features[Features::<D>::id(j) * stride + c..]);
                         c += w;
                     }
                 }
                 plane = Some(row_cell);
+            }
+            // The row's terms along axes 1.. of every candidate.
+            for j in 0..rows {
+                for a in 1..D {
+                    let (from, to) = (Features::<D>::jitter(j, a) * stride, Features::<D>::term(j, a) * stride);
+                    let mut c = 0;
+                    while c < ncell + 2 {
+                        let d = Self::reach(digit(j, a - 1), B::from_slice(&features[from + c..]), row_frac[a]);
+                        term(self.metric, d).store(&mut features[to + c..]);
+                        c += w;
+                    }
+                }
             }
             let mut k = 0;
             while k < n {
@@ -428,56 +451,57 @@ impl Worley {
         }
     }
 
-    /// [`Worley::chunk`] keeping as many distances as the output needs.
+    /// [`Worley::chunk`] keeping as many distances as the output needs,
+    /// and the ids only where it reads them.
     #[inline(always)]
     fn chunk_k<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &impl Near) -> Option<B> {
-        // F1 alone (the common case) with k a constant: the nearest then
+        // k a constant where it is 1 (the common case): the nearest then
         // lives in a register.
-        match self.output.needs() {
-            1 => self.chunk::<B, D>(p, near, 1),
-            k => self.chunk::<B, D>(p, near, k),
+        match (self.output.needs(), self.output == CellOutput::CellValue) {
+            (1, false) => self.chunk::<B, D, false>(p, near, 1),
+            (1, true) => self.chunk::<B, D, true>(p, near, 1),
+            (k, _) => self.chunk::<B, D, false>(p, near, k),
         }
     }
 
     /// One chunk from a row's feature points: `search` over rings 0 and 1
     /// (the same candidates in the same order), or `None` where some lane
-    /// needs ring 2. `k` is the number of distances kept.
+    /// needs ring 2. `k` is the number of distances kept; `IDS` whether
+    /// the cells' ids are (positions never are).
     #[inline(always)]
-    fn chunk<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &impl Near, k: usize) -> Option<B> {
+    fn chunk<B: BatchLanes, const D: usize, const IDS: bool>(&self, p: [B; D], near: &impl Near, k: usize) -> Option<B> {
         let (base, frac, edge) = Self::split(p);
         let column = base[0].sub(B::Int::splat(near.origin()));
         let columns = [column.add_c(-1), column, column.add_c(1)];
         let planes = 3usize.pow(D as u32 - 1);
         let centre = planes / 2;
+        let nowhere = [B::cst(0.0); D];
         let mut found = Found::new();
         // Ring 0: the middle of the centre row of three.
-        let mid = self.row_of_three(p, frac, &columns, centre, near);
-        found.insert(mid.keys[1], mid.ids[1], mid.points[1], k);
+        let mid = self.row_of_three::<B, D, IDS>(frac[0], &columns, centre, near);
+        found.insert(mid.keys[1], mid.ids[1], nowhere, k);
         if !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
             return Some(super::finite_or_nan(p, self.output(&found)));
         }
         // Ring 1: every row of three, the centre row's middle left out.
         for j in 0..planes {
-            let mut row = if j == centre { mid } else { self.row_of_three(p, frac, &columns, j, near) };
+            let mut row = if j == centre { mid } else { self.row_of_three::<B, D, IDS>(frac[0], &columns, j, near) };
             if j == centre {
                 row.keys[1] = B::cst(f64::INFINITY);
             }
             if k == 1 {
                 // The row's nearest first (ties to the earlier, as
                 // insertion keeps them): one dependent insertion per row.
-                let (mut key, mut id, mut point) = (row.keys[0], row.ids[0], row.points[0]);
+                let (mut key, mut id) = (row.keys[0], row.ids[0]);
                 for c in 1..3 {
                     let closer = row.keys[c].lt(key);
                     key = B::select(closer, row.keys[c], key);
                     id = B::Int::select(closer, row.ids[c], id);
-                    for a in 0..D {
-                        point[a] = B::select(closer, row.points[c][a], point[a]);
-                    }
                 }
-                found.insert(key, id, point, k);
+                found.insert(key, id, nowhere, k);
             } else {
                 for c in 0..3 {
-                    found.insert(row.keys[c], row.ids[c], row.points[c], k);
+                    found.insert(row.keys[c], row.ids[c], nowhere, k);
                 }
             }
         }
@@ -487,56 +511,109 @@ impl Worley {
         Some(super::finite_or_nan(p, self.output(&found)))
     }
 
-    /// The feature points of cells −1, 0 and +1 along axis 0 from each
-    /// lane's cell, in the row of cells `j` (base 3 over axes 1.., as in
-    /// `search`'s ring 1, whose order `j`-major, axis 0 minor, this keeps).
+    /// The search keys (and, with `IDS`, ids) of cells −1, 0 and +1 along
+    /// axis 0 from each lane's cell, in the row of cells `j` (base 3 over
+    /// axes 1.., as in `search`'s ring 1, whose order `j`-major, axis 0
+    /// minor, this keeps), for lanes at `frac0` in their cells along axis 0.
     #[inline(always)]
-    fn row_of_three<B: BatchLanes, const D: usize>(
+    fn row_of_three<B: BatchLanes, const D: usize, const IDS: bool>(
         &self,
-        p: [B; D],
-        frac: [B; D],
+        frac0: B,
         columns: &[B::Int; 3],
         j: usize,
         near: &impl Near,
-    ) -> Three<B, D> {
-        let field = j * (D + 1);
-        let mut d = [[B::splat(0.0); D]; 3];
-        let mut points = [[B::splat(0.0); D]; 3];
+    ) -> Three<B> {
+        let mut d0 = [B::splat(0.0); 3];
+        let mut rest = [[B::splat(0.0); D]; 3];
         let mut ids = [B::Int::splat(0); 3];
         for c in 0..3 {
-            for a in 0..D {
-                let o = if a == 0 { c as i32 - 1 } else { digit(j, a - 1) };
-                d[c][a] = Self::reach(o, near.lanes::<B>(field + a, c, columns[c]), frac[a]);
-                points[c][a] = p[a] + d[c][a];
+            d0[c] = near.lanes::<B>(Features::<D>::lead(j, c), c, columns[c]) - frac0;
+            for a in 1..D {
+                rest[c][a] = near.lanes::<B>(Features::<D>::term(j, a), c, columns[c]);
             }
-            ids[c] = near.lanes::<B>(field + D, c, columns[c]).to_bits();
+            if IDS {
+                ids[c] = near.lanes::<B>(Features::<D>::id(j), c, columns[c]).to_bits();
+            }
         }
-        Three { keys: self.keys(&d), ids, points }
+        Three { keys: self.keys(d0, &rest), ids }
     }
 }
 
-/// Three candidates' keys, ids and positions.
-#[derive(Clone, Copy)]
-struct Three<B: BatchLanes, const D: usize> {
-    keys: [B; 3],
-    ids: [B::Int; 3],
-    points: [[B; D]; 3],
+/// Where the grid fill keeps the fields of its rows of cells: row `j`'s
+/// fields start at `j · PER_ROW`, each `stride` columns long.
+struct Features<const D: usize>;
+
+impl<const D: usize> Features<D> {
+    /// Fields per row of cells.
+    const PER_ROW: usize = 2 * D + 2;
+
+    /// [`Worley::lead`] of the cell `o − 1` columns from the lane's
+    /// (o = 0, 1, 2), stored at that cell's column: per plane of cells.
+    const fn lead(j: usize, o: usize) -> usize {
+        j * Self::PER_ROW + o
+    }
+
+    /// The displacement along axis `a` ≥ 1: per plane of cells.
+    const fn jitter(j: usize, a: usize) -> usize {
+        j * Self::PER_ROW + 2 + a
+    }
+
+    /// The metric's [`term`] of the offset along axis `a` ≥ 1 from the grid
+    /// row's points: per grid row.
+    const fn term(j: usize, a: usize) -> usize {
+        j * Self::PER_ROW + D + 1 + a
+    }
+
+    /// The cell's id bits: per plane of cells.
+    const fn id(j: usize) -> usize {
+        j * Self::PER_ROW + 2 * D + 1
+    }
 }
 
-/// An offset's search key in `metric` (see [`Worley::key`]).
+/// Three candidates' keys and ids.
+#[derive(Clone, Copy)]
+struct Three<B: BatchLanes> {
+    keys: [B; 3],
+    ids: [B::Int; 3],
+}
+
+/// An offset's search key in `metric` (see [`Worley::key`]): the axes'
+/// [`term`]s folded in axis order, then the Minkowski root.
 #[inline(always)]
 fn key_in<L: Lanes, const D: usize>(metric: Metric, d: &[L; D]) -> L {
-    let mut s = match metric {
-        Metric::Euclidean | Metric::EuclideanSquared => d[0] * d[0],
-        Metric::Manhattan | Metric::Chebyshev => d[0].abs(),
-        Metric::Minkowski(p) => d[0].abs().powf(L::cst(p)),
-    };
-    for &c in &d[1..] {
+    let mut terms = *d;
+    for t in terms.iter_mut() {
+        *t = term(metric, *t);
+    }
+    key_of_terms(metric, &terms)
+}
+
+/// [`key_in`] of an offset whose axis-0 part is `d0` and whose other
+/// axes' terms are already formed (`terms[0]` is not read).
+#[inline(always)]
+fn key_along<L: Lanes, const D: usize>(metric: Metric, d0: L, mut terms: [L; D]) -> L {
+    terms[0] = term(metric, d0);
+    key_of_terms(metric, &terms)
+}
+
+/// One axis's part of a search key in `metric`.
+#[inline(always)]
+fn term<L: Lanes>(metric: Metric, d: L) -> L {
+    match metric {
+        Metric::Euclidean | Metric::EuclideanSquared => d * d,
+        Metric::Manhattan | Metric::Chebyshev => d.abs(),
+        Metric::Minkowski(p) => d.abs().powf(L::cst(p)),
+    }
+}
+
+/// The search key from every axis's term.
+#[inline(always)]
+fn key_of_terms<L: Lanes, const D: usize>(metric: Metric, terms: &[L; D]) -> L {
+    let mut s = terms[0];
+    for &t in &terms[1..] {
         s = match metric {
-            Metric::Euclidean | Metric::EuclideanSquared => s + c * c,
-            Metric::Manhattan => s + c.abs(),
-            Metric::Chebyshev => s.max(c.abs()),
-            Metric::Minkowski(p) => s + c.abs().powf(L::cst(p)),
+            Metric::Chebyshev => s.max(t),
+            _ => s + t,
         };
     }
     match metric {
