@@ -65,6 +65,7 @@ pub mod kinds;
 pub mod lanes;
 pub mod recipes;
 mod noise;
+mod scratch;
 
 pub use compose::{ComposeError, Fractal, FractalMode, Looped, Octave, Warp};
 pub use grid::{Accuracy, Axes, Grid, GridError, SimdLevel, Span};

@@ -9,7 +9,6 @@ use super::ComposeError;
 use crate::grid::{store_prefix, Axes, RowPiece, Span};
 use crate::lanes::{BatchLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
-use alloc::vec;
 
 /// How octaves combine. `nᵢ` is octave i's noise at `lacunarityⁱ·p`, `aᵢ =
 /// gainⁱ` its amplitude and `A = Σ aᵢ`; every sum is divided by `A`, so the
@@ -379,17 +378,18 @@ impl<N: NoiseGradient<D>, L: Lanes, const D: usize> Octaves<Dual<L, D>> for Grad
     }
 }
 
-/// Octave values already filled for a chunk of a grid: buffer i holds
-/// octave i, the chunk starts at `at`.
+/// Octave values already filled for a chunk of a grid: octave i from
+/// `i · stride` in `buffers`, the chunk starting `at` there.
 struct Filled<'a> {
-    buffers: &'a [Vec<f32>],
+    buffers: &'a [f32],
+    stride: usize,
     at: usize,
 }
 
 impl<B: BatchLanes> Octaves<B> for Filled<'_> {
     #[inline(always)]
     fn octave(&self, i: usize, _frequency: f64) -> B {
-        finite_or_zero(B::from_slice(&self.buffers[i][self.at..]))
+        finite_or_zero(B::from_slice(&self.buffers[i * self.stride + self.at..]))
     }
 }
 
@@ -415,13 +415,16 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         let scaled: Vec<Axes<D>> = self.steps.frequency[..self.octaves.len()].iter().map(|&f| span.axes.scaled(f as f32)).collect();
         // Whole rows per block where rows are short, so octaves see whole rows.
         let block = if nx < BLOCK { BLOCK / nx * nx } else { BLOCK };
-        let mut buffers: Vec<Vec<f32>> = (0..self.octaves.len()).map(|_| vec![0.0; block + w]).collect();
+        // Octave i's values from i · stride (a buffer kept by the thread).
+        let stride = block + w;
+        let mut buffers = crate::scratch::take(self.octaves.len() * stride);
         let mut done = 0;
         while done < out.len() {
             let len = block.min(out.len() - done);
             let start = span.start + done;
             for (i, noise) in self.octaves.iter().enumerate() {
-                noise.fill_span::<B>(Span { axes: &scaled[i], start, accuracy: span.accuracy }, &mut buffers[i][..len]);
+                let octave = &mut buffers[i * stride..i * stride + len];
+                noise.fill_span::<B>(Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
             }
             let part = Span { axes: span.axes, start, accuracy: span.accuracy };
             let xs = span.axes.axis(0);
@@ -436,7 +439,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                     let at = offset + k;
                     p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
                     // NaN where any coordinate is not finite, as point evaluation.
-                    let v = crate::kinds::finite_or_nan(p, self.combine(&Filled { buffers: &buffers, at }));
+                    let v = crate::kinds::finite_or_nan(p, self.combine(&Filled { buffers: &buffers, stride, at }));
                     let count = (n - k).min(w);
                     store_prefix(v, &mut out[done + at..done + at + count]);
                     k += w;
@@ -444,6 +447,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             }
             done += len;
         }
+        crate::scratch::give_back(buffers);
     }
 }
 
