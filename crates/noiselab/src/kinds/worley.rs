@@ -437,7 +437,7 @@ impl Worley {
                 let window = Window { features: &features, stride, first: (a - min_cell) as usize, origin: a - 1 };
                 let v = if a == b {
                     // One cell: every lane reads the same feature points.
-                    self.chunk_k::<B, D>(p, &OneCell(window))
+                    self.chunk_k::<B, D>(p, &OneCell::new(window, rows * Features::<D>::PER_ROW))
                 } else if ((b - a) as usize) + 3 <= 2 * w {
                     // Columns a − 1 ..= b + 1 fit two registers.
                     self.chunk_k::<B, D>(p, &window)
@@ -660,17 +660,34 @@ impl Near for Window<'_> {
 
 /// A window whose chunk lies in one cell (column 1 of the window): every
 /// lane reads the same feature points.
-struct OneCell<'a>(Window<'a>);
+struct OneCell<'a> {
+    window: Window<'a>,
+    fields: usize,
+}
+
+impl<'a> OneCell<'a> {
+    /// The window's first `fields` fields.
+    #[inline(always)]
+    fn new(window: Window<'a>, fields: usize) -> Self {
+        // One check for every field's three columns, so that reads need
+        // none (a chunk broadcasts dozens of them).
+        assert!(fields >= 1 && window.first + 2 + (fields - 1) * window.stride < window.features.len());
+        OneCell { window, fields }
+    }
+}
 
 impl Near for OneCell<'_> {
     #[inline(always)]
     fn origin(&self) -> i32 {
-        self.0.origin
+        self.window.origin
     }
     #[inline(always)]
     fn lanes<B: BatchLanes>(&self, field: usize, c: usize, _column: B::Int) -> B {
-        let w = &self.0;
-        B::splat(w.features[field * w.stride + w.first + c])
+        let w = &self.window;
+        assert!(field < self.fields && c < 3);
+        // SAFETY: field·stride + first + c ≤ (fields − 1)·stride + first + 2,
+        // which `new` checked is inside `features`.
+        B::splat(unsafe { *w.features.get_unchecked(field * w.stride + w.first + c) })
     }
 }
 
