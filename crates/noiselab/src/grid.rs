@@ -193,16 +193,16 @@ impl<const D: usize> Span<'_, D> {
     /// The (partial) grid rows that `len` points from the span's start
     /// cover, in order.
     #[inline(always)]
-    pub fn rows(&self, len: usize) -> RowIter {
-        RowIter { nx: self.axes.size(0), index: self.start, end: self.start + len, start: self.start }
+    pub fn rows(&self, len: usize) -> RowIter<'_, D> {
+        RowIter { axes: self.axes, index: self.start, end: self.start + len, start: self.start, next: None }
     }
 }
 
 /// A piece of one grid row: [`Span::rows`]'s items.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct RowPiece {
-    /// The row's index (over axes 1.., see [`Axes::row_indices`]).
-    pub row: usize,
+pub struct RowPiece<const D: usize> {
+    /// The row's indices along axes 1.. (`[0]` is 0; see [`Axes::row_indices`]).
+    pub idx: [usize; D],
     /// The first column.
     pub first: usize,
     /// Where the piece starts in the span's output.
@@ -213,24 +213,41 @@ pub struct RowPiece {
 
 /// Iterator over the row pieces of a span.
 #[derive(Clone, Debug)]
-pub struct RowIter {
-    nx: usize,
+pub struct RowIter<'a, const D: usize> {
+    axes: &'a Axes<D>,
     index: usize,
     end: usize,
     start: usize,
+    /// The next row's indices, once the first piece is out (rows then
+    /// follow one another: the indices count up, no divisions).
+    next: Option<[usize; D]>,
 }
 
-impl Iterator for RowIter {
-    type Item = RowPiece;
+impl<const D: usize> Iterator for RowIter<'_, D> {
+    type Item = RowPiece<D>;
     #[inline(always)]
-    fn next(&mut self) -> Option<RowPiece> {
-        if self.index >= self.end || self.nx == 0 {
+    fn next(&mut self) -> Option<RowPiece<D>> {
+        let nx = self.axes.size(0);
+        if self.index >= self.end || nx == 0 {
             return None;
         }
-        let first = self.index % self.nx;
-        let len = (self.nx - first).min(self.end - self.index);
-        let piece = RowPiece { row: self.index / self.nx, first, offset: self.index - self.start, len };
+        let (idx, first) = match self.next {
+            Some(idx) => (idx, 0),
+            None => (self.axes.row_indices(self.index / nx), self.index % nx),
+        };
+        let len = (nx - first).min(self.end - self.index);
+        let piece = RowPiece { idx, first, offset: self.index - self.start, len };
         self.index += len;
+        // The following row: axis 1 counts up, carrying into the next axes.
+        let mut following = idx;
+        for d in 1..D {
+            following[d] += 1;
+            if following[d] < self.axes.size(d) {
+                break;
+            }
+            following[d] = 0;
+        }
+        self.next = Some(following);
         Some(piece)
     }
 }
@@ -241,8 +258,7 @@ impl Iterator for RowIter {
 pub fn fill_pointwise<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
-    for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
-        let idx = span.axes.row_indices(row);
+    for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         let mut p = [B::splat(0.0); D];
         for d in 1..D {
             p[d] = B::splat(span.axes.axis(d)[idx[d]]);
@@ -527,4 +543,30 @@ fn lanes_of<B: BatchLanes, const D: usize>(pc: &[[f32; D]]) -> [B; D] {
         *pd = B::from_slice(&xs);
     }
     p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Row pieces from any start cover the span in order, each with the
+    /// indices `row_indices` gives its row (the iterator counts them up).
+    #[test]
+    fn row_pieces_carry_their_rows_indices() {
+        let axes = Axes::of(&Grid::new([0.0; 3], [1.0; 3], [5, 3, 4]));
+        for start in [0, 1, 4, 5, 14, 15, 16, 59] {
+            for len in [1, 4, 6, 17, 60 - start] {
+                let len = len.min(60 - start);
+                let span = Span { axes: &axes, start, accuracy: Accuracy::Exact };
+                let mut at = start;
+                for piece in span.rows(len) {
+                    assert_eq!(piece.offset, at - start);
+                    assert_eq!(piece.first, at % 5);
+                    assert_eq!(piece.idx, axes.row_indices(at / 5), "start {start}, len {len}, at {at}");
+                    at += piece.len;
+                }
+                assert_eq!(at, start + len);
+            }
+        }
+    }
 }

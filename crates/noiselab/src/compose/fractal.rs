@@ -428,8 +428,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             }
             let part = Span { axes: span.axes, start, accuracy: span.accuracy };
             let xs = span.axes.axis(0);
-            for RowPiece { row, first, offset, len: n } in part.rows(len) {
-                let idx = span.axes.row_indices(row);
+            for RowPiece { idx, first, offset, len: n } in part.rows(len) {
                 let mut p = [B::cst(0.0); D];
                 for d in 1..D {
                     p[d] = B::splat(span.axes.axis(d)[idx[d]]);

@@ -580,9 +580,8 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
 
-    for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
+    for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         // Axes 1..: the same for the whole row.
-        let idx = span.axes.row_indices(row);
         let mut cell = [0i32; D];
         let mut f = [0f32; D];
         for d in 1..D {

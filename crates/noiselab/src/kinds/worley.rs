@@ -382,8 +382,7 @@ impl Worley {
         let mut features = vec![0f32; rows * Features::<D>::PER_ROW * stride];
         let mut plane: Option<[i32; D]> = None;
 
-        for RowPiece { row, first: i0, offset: o0, len: n } in span.rows(out.len()) {
-            let idx = span.axes.row_indices(row);
+        for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
             let mut p = [B::splat(0.0); D];
             for a in 1..D {
                 p[a] = B::splat(span.axes.axis(a)[idx[a]]);
