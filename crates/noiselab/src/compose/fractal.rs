@@ -288,12 +288,19 @@ impl<N> Fractal<N> {
     /// gives octave i's noise (value or value + gradient).
     #[inline(always)]
     fn combine<T: Arith>(&self, octaves: &impl Octaves<T>) -> T {
+        self.combine_as(self.mode, octaves)
+    }
+
+    /// [`Fractal::combine`] in `mode` (a constant where the caller
+    /// dispatches on the mode once, so the loop has no branch on it).
+    #[inline(always)]
+    fn combine_as<T: Arith>(&self, mode: FractalMode, octaves: &impl Octaves<T>) -> T {
         let mut sum = T::cst(0.0);
         let mut weight = T::cst(1.0);
         for i in 0..self.octaves.len() {
             let amplitude = self.steps.amplitude[i];
             let n = octaves.octave(i, self.steps.frequency[i]);
-            let term = match self.mode {
+            let term = match mode {
                 FractalMode::Fbm => n,
                 FractalMode::Turbulence => n.abs(),
                 FractalMode::Billow => n.abs().scale(2.0).add(T::cst(-1.0)),
@@ -427,26 +434,47 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                 noise.fill_span::<B>(Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
             }
             let part = Span { axes: span.axes, start, accuracy: span.accuracy };
-            let xs = span.axes.axis(0);
-            for RowPiece { idx, first, offset, len: n } in part.rows(len) {
-                let mut p = [B::cst(0.0); D];
-                for d in 1..D {
-                    p[d] = B::splat(span.axes.axis(d)[idx[d]]);
-                }
-                let mut k = 0;
-                while k < n {
-                    let at = offset + k;
-                    p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
-                    // NaN where any coordinate is not finite, as point evaluation.
-                    let v = crate::kinds::finite_or_nan(p, self.combine(&Filled { buffers: &buffers, stride, at }));
-                    let count = (n - k).min(w);
-                    store_prefix(v, &mut out[done + at..done + at + count]);
-                    k += w;
-                }
+            let filled = (&buffers[..], stride);
+            let out = &mut out[done..done + len];
+            // The mode dispatched once per block.
+            match self.mode {
+                FractalMode::Fbm => self.combine_block::<B, D>(FractalMode::Fbm, part, filled, out),
+                FractalMode::Turbulence => self.combine_block::<B, D>(FractalMode::Turbulence, part, filled, out),
+                FractalMode::Ridged => self.combine_block::<B, D>(FractalMode::Ridged, part, filled, out),
+                FractalMode::Billow => self.combine_block::<B, D>(FractalMode::Billow, part, filled, out),
+                FractalMode::Hybrid => self.combine_block::<B, D>(FractalMode::Hybrid, part, filled, out),
             }
             done += len;
         }
         crate::scratch::give_back(buffers);
+    }
+}
+
+impl<N> Fractal<N> {
+    /// The grid fill's second pass over a block (`part`, `out.len()`
+    /// points): the octave loop in `mode` over the filled octaves
+    /// (`filled`: the buffers and octave stride), point by point.
+    #[inline(always)]
+    fn combine_block<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Span<'_, D>, filled: (&[f32], usize), out: &mut [f32]) {
+        let w = B::WIDTH;
+        let (buffers, stride) = filled;
+        let xs = part.axes.axis(0);
+        for RowPiece { idx, first, offset, len: n } in part.rows(out.len()) {
+            let mut p = [B::cst(0.0); D];
+            for d in 1..D {
+                p[d] = B::splat(part.axes.axis(d)[idx[d]]);
+            }
+            let mut k = 0;
+            while k < n {
+                let at = offset + k;
+                p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
+                // NaN where any coordinate is not finite, as point evaluation.
+                let v = crate::kinds::finite_or_nan(p, self.combine_as(mode, &Filled { buffers, stride, at }));
+                let count = (n - k).min(w);
+                store_prefix(v, &mut out[at..at + count]);
+                k += w;
+            }
+        }
     }
 }
 
