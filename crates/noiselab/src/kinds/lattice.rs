@@ -309,7 +309,7 @@ impl<'a> OneCell<'a> {
         // One check for every field's entry and the next, so that reads
         // need none (these broadcasts are most of a chunk's loads).
         let from = &columns.data[cell..];
-        assert!(fields >= 1 && (fields - 1) * columns.stride + 1 < from.len());
+        assert!(super::fields_hold(from.len(), fields, columns.stride, 1));
         OneCell { from, stride: columns.stride, fields }
     }
 }

@@ -83,6 +83,14 @@ pub(crate) fn is_finite<L: Lanes>(x: L) -> L::Mask {
     (x - x).le(L::cst(0.0))
 }
 
+/// Whether `fields` fields of a field-major table (`stride` values each, `len`
+/// in all) all hold index `at` past their start: the one check behind the
+/// grid fills' unchecked broadcasts (overflow counts as not).
+#[inline(always)]
+pub(crate) fn fields_hold(len: usize, fields: usize, stride: usize, at: usize) -> bool {
+    fields >= 1 && (fields - 1).checked_mul(stride).and_then(|start| start.checked_add(at)).is_some_and(|last| last < len)
+}
+
 /// The smallest and largest of some cells (of a grid row's columns).
 #[inline(always)]
 pub(crate) fn cell_range(cells: &[i32]) -> (i32, i32) {
@@ -160,5 +168,21 @@ impl Period {
             *c = self.wrap(axis, *c);
         }
         cell
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fields_hold;
+
+    #[test]
+    fn fields_hold_checks_the_last_field_and_overflow() {
+        // 3 fields of stride 10: the last field's index 9 is 29 < 30.
+        assert!(fields_hold(30, 3, 10, 9));
+        assert!(!fields_hold(30, 3, 10, 10));
+        assert!(!fields_hold(30, 0, 10, 0));
+        assert!(fields_hold(1, 1, usize::MAX, 0));
+        assert!(!fields_hold(30, 3, usize::MAX / 2 + 1, 0));
+        assert!(!fields_hold(30, 2, 10, usize::MAX - 5));
     }
 }

@@ -670,7 +670,7 @@ impl<'a> OneCell<'a> {
     fn new(window: Window<'a>, fields: usize) -> Self {
         // One check for every field's three columns, so that reads need
         // none (a chunk broadcasts dozens of them).
-        assert!(fields >= 1 && window.first + 2 + (fields - 1) * window.stride < window.features.len());
+        assert!(super::fields_hold(window.features.len(), fields, window.stride, window.first + 2));
         OneCell { window, fields }
     }
 }
