@@ -220,13 +220,15 @@ pub(crate) fn sample_gradient<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K,
 /// load and store as lanes. Integer fields are stored as their bits.
 struct Columns {
     stride: usize,
+    /// How many fields: `data` holds exactly `fields · stride` values.
+    fields: usize,
     data: Vec<f32>,
 }
 
 impl Columns {
     /// Room for `fields` fields of `entries` entries.
     fn new(fields: usize, entries: usize) -> Self {
-        Columns { stride: entries, data: vec![0.0; fields * entries] }
+        Columns { stride: entries, fields, data: vec![0.0; fields * entries] }
     }
 
     /// Field `field` of entries `at..at + WIDTH`.
@@ -308,9 +310,9 @@ impl<'a> OneCell<'a> {
     fn new(columns: &'a Columns, cell: usize, fields: usize) -> Self {
         // One check for every field's entry and the next, so that reads
         // need none (these broadcasts are most of a chunk's loads).
-        let from = &columns.data[cell..];
-        assert!(super::fields_hold(from.len(), fields, columns.stride, 1));
-        OneCell { from, stride: columns.stride, fields }
+        // (`data` is `columns.fields · stride` long, so no product overflows.)
+        assert!(fields <= columns.fields && cell + 1 < columns.stride);
+        OneCell { from: &columns.data[cell..], stride: columns.stride, fields }
     }
 }
 
@@ -319,8 +321,9 @@ impl<B: BatchLanes> Source<B> for OneCell<'_> {
     fn field(&self, k: usize, next: usize) -> B {
         // Folds away for the constant k and next of every caller.
         assert!(k < self.fields && next <= 1);
-        // SAFETY: k·stride + next ≤ (fields − 1)·stride + 1, which `new`
-        // checked is inside `from`.
+        // SAFETY: `new` checked fields ≤ columns.fields and cell + 1 <
+        // stride, so cell + k·stride + next < columns.fields · stride, the
+        // length of the data `from` starts `cell` into.
         B::splat(unsafe { *self.from.get_unchecked(k * self.stride + next) })
     }
 }
