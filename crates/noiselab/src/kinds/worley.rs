@@ -533,7 +533,7 @@ impl Worley {
                 let (mut key, mut id) = (row.keys[0], row.ids[0]);
                 for c in 1..3 {
                     let closer = row.keys[c].lt(key);
-                    key = B::select(closer, row.keys[c], key);
+                    key = key.min(row.keys[c]);
                     id = B::Int::select(closer, row.ids[c], id);
                 }
                 found.insert(key, id, nowhere, k);
@@ -767,8 +767,11 @@ impl<L: Lanes, const D: usize> Found<L, D> {
     fn insert(&mut self, mut dist: L, mut id: L::Int, mut point: [L; D], k: usize) {
         for slot in 0..k {
             let closer = dist.lt(self.distance[slot]);
-            let kept = L::select(closer, dist, self.distance[slot]);
-            dist = L::select(closer, self.distance[slot], dist);
+            // `min` and `max` are these selects by definition (one
+            // instruction each instead of a compare and two blends where
+            // the ids and positions are not kept).
+            let kept = self.distance[slot].min(dist);
+            dist = dist.max(self.distance[slot]);
             self.distance[slot] = kept;
             if slot < 2 {
                 let kept_id = L::Int::select(closer, id, self.id_lanes[slot]);

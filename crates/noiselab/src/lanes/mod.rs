@@ -84,9 +84,12 @@ pub trait Lanes:
     fn abs(self) -> Self;
     /// Correctly rounded square root.
     fn sqrt(self) -> Self;
-    /// Lane-wise minimum (`self` when either is NaN is not promised; kernels avoid NaN here).
+    /// Lane-wise minimum, `if o < self { o } else { self }` in every
+    /// implementation (so `self` where either is NaN): exactly
+    /// `select(o.lt(self), o, self)`.
     fn min(self, o: Self) -> Self;
-    /// Lane-wise maximum.
+    /// Lane-wise maximum, `if o > self { o } else { self }` in every
+    /// implementation: exactly `select(self.lt(o), o, self)`.
     fn max(self, o: Self) -> Self;
 
     /// `self < o`.
