@@ -11,7 +11,10 @@ pub mod sparse;
 pub mod value;
 pub mod worley;
 
-use crate::lanes::{lerp, IntLanes, Lanes};
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::lanes::{lerp, BatchLanes, IntLanes, Lanes};
 
 /// Most corners a lattice cell has (4D).
 pub(crate) const MAX_CORNERS: usize = 16;
@@ -83,12 +86,78 @@ pub(crate) fn is_finite<L: Lanes>(x: L) -> L::Mask {
     (x - x).le(L::cst(0.0))
 }
 
-/// Whether `fields` fields of a field-major table (`stride` values each, `len`
-/// in all) all hold index `at` past their start: the one check behind the
-/// grid fills' unchecked broadcasts (overflow counts as not).
-#[inline(always)]
-pub(crate) fn fields_hold(len: usize, fields: usize, stride: usize, at: usize) -> bool {
-    fields >= 1 && (fields - 1).checked_mul(stride).and_then(|start| start.checked_add(at)).is_some_and(|last| last < len)
+/// A field-major table of records for consecutive entries (lattice points
+/// or cells along axis 0): field k of entry e at `[k·stride + e]`, so
+/// consecutive entries load and store as lanes. Integer fields are stored
+/// as their bits. The grid fills keep their per-row records here.
+pub(crate) struct Columns {
+    stride: usize,
+    /// How many fields: `data` holds exactly `fields · stride` values.
+    fields: usize,
+    data: Vec<f32>,
+}
+
+impl Columns {
+    /// Room for `fields` fields of `entries` entries (zeros).
+    pub(crate) fn new(fields: usize, entries: usize) -> Self {
+        Columns { stride: entries, fields, data: vec![0.0; fields * entries] }
+    }
+
+    /// Entries per field.
+    #[inline(always)]
+    pub(crate) fn stride(&self) -> usize {
+        self.stride
+    }
+
+    /// Field `field` from entry `at` on.
+    #[inline(always)]
+    pub(crate) fn field(&self, field: usize, at: usize) -> &[f32] {
+        &self.data[field * self.stride + at..]
+    }
+
+    /// Field `field` of entries `at..at + WIDTH`.
+    #[inline(always)]
+    pub(crate) fn load<B: BatchLanes>(&self, field: usize, at: usize) -> B {
+        B::from_slice(self.field(field, at))
+    }
+
+    /// Store `v` as field `field` of entries `at..at + WIDTH`.
+    #[inline(always)]
+    pub(crate) fn store<B: BatchLanes>(&mut self, field: usize, at: usize, v: B) {
+        v.store(&mut self.data[field * self.stride + at..]);
+    }
+
+    /// Entries `first..first + width` of the first `fields` fields, checked
+    /// once here so that reading them needs no check of its own (a grid
+    /// chunk in one cell broadcasts dozens of them).
+    #[inline(always)]
+    pub(crate) fn entries(&self, fields: usize, first: usize, width: usize) -> Entries<'_> {
+        // No sum or product that could overflow.
+        assert!(fields <= self.fields && width <= self.stride && first <= self.stride - width);
+        Entries { from: &self.data[first..], stride: self.stride, fields, width }
+    }
+}
+
+/// Some entries of a [`Columns`], bounds-checked as a whole.
+pub(crate) struct Entries<'a> {
+    from: &'a [f32],
+    stride: usize,
+    fields: usize,
+    width: usize,
+}
+
+impl Entries<'_> {
+    /// Field `field` of the entry `at` past the first.
+    #[inline(always)]
+    pub(crate) fn get(&self, field: usize, at: usize) -> f32 {
+        // Folds away where the caller's field and entry are constants.
+        assert!(field < self.fields && at < self.width);
+        // SAFETY: `from` starts `first` into data of `total · stride`
+        // values, and `Columns::entries` checked fields ≤ total and first +
+        // width ≤ stride. So field·stride + at ≤ (fields − 1)·stride +
+        // width − 1 < total·stride − first.
+        unsafe { *self.from.get_unchecked(field * self.stride + at) }
+    }
 }
 
 /// The smallest and largest of some cells (of a grid row's columns).
@@ -171,18 +240,30 @@ impl Period {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
-    use super::fields_hold;
+    use super::Columns;
 
     #[test]
-    fn fields_hold_checks_the_last_field_and_overflow() {
-        // 3 fields of stride 10: the last field's index 9 is 29 < 30.
-        assert!(fields_hold(30, 3, 10, 9));
-        assert!(!fields_hold(30, 3, 10, 10));
-        assert!(!fields_hold(30, 0, 10, 0));
-        assert!(fields_hold(1, 1, usize::MAX, 0));
-        assert!(!fields_hold(30, 3, usize::MAX / 2 + 1, 0));
-        assert!(!fields_hold(30, 2, 10, usize::MAX - 5));
+    fn entries_read_every_field_and_refuse_what_lies_outside() {
+        let mut t = Columns::new(3, 10);
+        for (k, v) in t.data.iter_mut().enumerate() {
+            *v = k as f32;
+        }
+        let e = t.entries(3, 7, 3);
+        assert_eq!((e.get(0, 0), e.get(2, 2)), (7.0, 29.0));
+        let refused = |fields: usize, first: usize, width: usize| {
+            std::panic::catch_unwind(|| {
+                t.entries(fields, first, width);
+            })
+            .is_err()
+        };
+        assert!(refused(4, 0, 1));
+        assert!(refused(3, 8, 3));
+        assert!(refused(1, 0, 11));
+        assert!(refused(1, usize::MAX, 2));
+        assert!(!refused(3, 10, 0));
+        assert!(std::panic::catch_unwind(|| e.get(3, 0)).is_err());
+        assert!(std::panic::catch_unwind(|| e.get(0, 3)).is_err());
     }
 }

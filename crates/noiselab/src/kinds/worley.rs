@@ -4,10 +4,9 @@
 
 use core::fmt;
 
-use alloc::vec;
 use alloc::vec::Vec;
 
-use super::{cell_range, Period, PeriodError};
+use super::{cell_range, Columns, Entries, Period, PeriodError};
 use crate::grid::{fill_pointwise, fill_span_at, row_lanes, store_prefix, RowPiece, Span};
 use crate::hash::{fmix32, hash_cell};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
@@ -379,7 +378,7 @@ impl Worley {
         // row, laid out by `Features`.
         let rows = 3usize.pow(D as u32 - 1);
         let stride = ncell + 2 + 2 * w;
-        let mut features = vec![0f32; rows * Features::<D>::PER_ROW * stride];
+        let mut features = Columns::new(rows * Features::<D>::PER_ROW, stride);
         let mut plane: Option<[i32; D]> = None;
 
         for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
@@ -404,12 +403,12 @@ impl Worley {
                         let id = self.cell_id(cell);
                         let t0 = self.jitter_along::<B>(id, 0);
                         for (o, lead) in [-1, 0, 1].into_iter().enumerate() {
-                            Self::lead(lead, t0).store(&mut features[Features::<D>::lead(j, o) * stride + c..]);
+                            features.store(Features::<D>::lead(j, o), c, Self::lead(lead, t0));
                         }
                         for a in 1..D {
-                            self.jitter_along::<B>(id, a).store(&mut features[Features::<D>::jitter(j, a) * stride + c..]);
+                            features.store(Features::<D>::jitter(j, a), c, self.jitter_along::<B>(id, a));
                         }
-                        B::from_bits(id).store(&mut features[Features::<D>::id(j) * stride + c..]);
+                        features.store(Features::<D>::id(j), c, B::from_bits(id));
                         c += w;
                     }
                 }
@@ -418,16 +417,16 @@ impl Worley {
             // The row's terms along axes 1.. of every candidate.
             for j in 0..rows {
                 for a in 1..D {
-                    let (from, to) = (Features::<D>::jitter(j, a) * stride, Features::<D>::term(j, a) * stride);
+                    let (from, to) = (Features::<D>::jitter(j, a), Features::<D>::term(j, a));
                     let mut c = 0;
                     while c < ncell + 2 {
-                        let d = Self::reach(digit(j, a - 1), B::from_slice(&features[from + c..]), row_frac[a]);
-                        term(self.metric, d).store(&mut features[to + c..]);
+                        let d = Self::reach(digit(j, a - 1), features.load::<B>(from, c), row_frac[a]);
+                        features.store(to, c, term(self.metric, d));
                         c += w;
                     }
                 }
             }
-            let row = RowFeatures { p, xs, cells: &cells, lo, min_cell, features: &features, stride };
+            let row = RowFeatures { p, xs, cells: &cells, lo, min_cell, features: &features };
             let row_out = &mut out[o0..o0 + n];
             // The most used searches (up to 3D) with their metric and output
             // as constants, so that the formulas and the count of kept
@@ -472,8 +471,7 @@ impl Worley {
             let i = i0 + k;
             p[0] = row_lanes(row.xs, i, count);
             let (a, b) = cell_range(&row.cells[i - row.lo..i - row.lo + count]);
-            let window =
-                Window { features: row.features, stride: row.stride, first: (a - row.min_cell) as usize, origin: a - 1 };
+            let window = Window { features: row.features, first: (a - row.min_cell) as usize, origin: a - 1 };
             let v = if a == b {
                 // One cell: every lane reads the same feature points.
                 self.chunk_k::<B, D>(p, &OneCell::new(window, rows * Features::<D>::PER_ROW))
@@ -618,8 +616,7 @@ struct RowFeatures<'a, B: BatchLanes, const D: usize> {
     cells: &'a [i32],
     lo: usize,
     min_cell: i32,
-    features: &'a [f32],
-    stride: usize,
+    features: &'a Columns,
 }
 
 /// Three candidates' keys and ids.
@@ -692,8 +689,7 @@ trait Near {
 /// A chunk's window on a row's feature points: columns `first..first +
 /// 2·WIDTH`, the first of them cell `origin`.
 struct Window<'a> {
-    features: &'a [f32],
-    stride: usize,
+    features: &'a Columns,
     first: usize,
     origin: i32,
 }
@@ -705,41 +701,35 @@ impl Near for Window<'_> {
     }
     #[inline(always)]
     fn lanes<B: BatchLanes>(&self, field: usize, _c: usize, column: B::Int) -> B {
-        let v = &self.features[field * self.stride + self.first..];
+        let v = self.features.field(field, self.first);
         B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), column)
     }
 }
 
 /// A window whose chunk lies in one cell (column 1 of the window): every
-/// lane reads the same feature points.
+/// lane reads the same feature points, the window's first three columns
+/// of its first `fields` fields, bounds-checked once.
 struct OneCell<'a> {
-    window: Window<'a>,
-    fields: usize,
+    origin: i32,
+    columns: Entries<'a>,
 }
 
 impl<'a> OneCell<'a> {
     /// The window's first `fields` fields.
     #[inline(always)]
     fn new(window: Window<'a>, fields: usize) -> Self {
-        // One check for every field's three columns, so that reads need
-        // none (a chunk broadcasts dozens of them).
-        assert!(super::fields_hold(window.features.len(), fields, window.stride, window.first + 2));
-        OneCell { window, fields }
+        OneCell { origin: window.origin, columns: window.features.entries(fields, window.first, 3) }
     }
 }
 
 impl Near for OneCell<'_> {
     #[inline(always)]
     fn origin(&self) -> i32 {
-        self.window.origin
+        self.origin
     }
     #[inline(always)]
     fn lanes<B: BatchLanes>(&self, field: usize, c: usize, _column: B::Int) -> B {
-        let w = &self.window;
-        assert!(field < self.fields && c < 3);
-        // SAFETY: field·stride + first + c ≤ (fields − 1)·stride + first + 2,
-        // which `new` checked is inside `features`.
-        B::splat(unsafe { *w.features.get_unchecked(field * w.stride + w.first + c) })
+        B::splat(self.columns.get(field, c))
     }
 }
 
