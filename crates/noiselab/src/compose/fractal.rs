@@ -117,37 +117,58 @@ struct Dual<L: Lanes, const D: usize> {
     d: [L; D],
 }
 
+// Gradient components by loops, not `map` or `from_fn` with closures: a
+// closure would not inherit the batch driver's instruction set, and its
+// lane operations would become calls.
 impl<L: Lanes, const D: usize> Arith for Dual<L, D> {
     #[inline(always)]
     fn cst(c: f64) -> Self {
         Dual { v: L::cst(c), d: [L::cst(0.0); D] }
     }
     #[inline(always)]
-    fn add(self, o: Self) -> Self {
-        Dual { v: self.v + o.v, d: core::array::from_fn(|k| self.d[k] + o.d[k]) }
+    fn add(mut self, o: Self) -> Self {
+        for k in 0..D {
+            self.d[k] = self.d[k] + o.d[k];
+        }
+        Dual { v: self.v + o.v, d: self.d }
     }
     #[inline(always)]
-    fn mul(self, o: Self) -> Self {
-        Dual { v: self.v * o.v, d: core::array::from_fn(|k| self.d[k] * o.v + self.v * o.d[k]) }
+    fn mul(mut self, o: Self) -> Self {
+        for k in 0..D {
+            self.d[k] = self.d[k] * o.v + self.v * o.d[k];
+        }
+        Dual { v: self.v * o.v, d: self.d }
     }
     #[inline(always)]
-    fn scale(self, c: f64) -> Self {
-        Dual { v: self.v * L::cst(c), d: self.d.map(|g| g * L::cst(c)) }
+    fn scale(mut self, c: f64) -> Self {
+        for g in self.d.iter_mut() {
+            *g = *g * L::cst(c);
+        }
+        Dual { v: self.v * L::cst(c), d: self.d }
     }
     #[inline(always)]
-    fn abs(self) -> Self {
+    fn abs(mut self) -> Self {
         let negative = self.v.lt(L::cst(0.0));
-        Dual { v: Lanes::abs(self.v), d: self.d.map(|g| L::select(negative, -g, g)) }
+        for g in self.d.iter_mut() {
+            *g = L::select(negative, -*g, *g);
+        }
+        Dual { v: Lanes::abs(self.v), d: self.d }
     }
     #[inline(always)]
-    fn min_one(self) -> Self {
+    fn min_one(mut self) -> Self {
         let capped = L::cst(1.0).lt(self.v);
-        Dual { v: L::select(capped, L::cst(1.0), self.v), d: self.d.map(|g| L::select(capped, L::cst(0.0), g)) }
+        for g in self.d.iter_mut() {
+            *g = L::select(capped, L::cst(0.0), *g);
+        }
+        Dual { v: L::select(capped, L::cst(1.0), self.v), d: self.d }
     }
     #[inline(always)]
-    fn clamp01(self) -> Self {
+    fn clamp01(mut self) -> Self {
         let out = self.v.lt(L::cst(0.0)) | L::cst(1.0).lt(self.v);
-        Dual { v: Lanes::max(Lanes::min(self.v, L::cst(1.0)), L::cst(0.0)), d: self.d.map(|g| L::select(out, L::cst(0.0), g)) }
+        for g in self.d.iter_mut() {
+            *g = L::select(out, L::cst(0.0), *g);
+        }
+        Dual { v: Lanes::max(Lanes::min(self.v, L::cst(1.0)), L::cst(0.0)), d: self.d }
     }
 }
 

@@ -145,7 +145,12 @@ impl<N: Noise<D>, W: Noise<D>, const D: usize> Noise<D> for Warp<N, W> {
         let mut q = p;
         let (mut amplitude, mut frequency) = (self.amplitude, self.frequency);
         for _ in 0..self.iterations {
-            let at = q.map(|c| c * L::cst(frequency));
+            // (A loop, not `map`: a closure would not inherit the batch
+            // driver's instruction set.)
+            let mut at = q;
+            for c in at.iter_mut() {
+                *c = *c * L::cst(frequency);
+            }
             let mut moved = q;
             for (k, m) in moved.iter_mut().enumerate() {
                 let w = self.field[k].sample(at);

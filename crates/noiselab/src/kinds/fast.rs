@@ -7,7 +7,7 @@
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 
-use crate::lanes::{Elem, IntLanes, Lanes};
+use crate::lanes::{lerp, Elem, IntLanes, Lanes};
 use crate::noise::Noise;
 use crate::Improved;
 
@@ -97,26 +97,41 @@ impl Fast {
             frac[a] = u - fl;
         }
         let mask = (SIDE - 1) as i32;
-        // The eight texel indices, shared by the channels.
-        let wrapped: [[L::Int; 2]; 3] = core::array::from_fn(|a| [base[a].and_c(mask), base[a].add_c(1).and_c(mask)]);
-        let flat: [L::Int; 8] = core::array::from_fn(|k| {
-            let (x, y, z) = (wrapped[0][k & 1], wrapped[1][(k >> 1) & 1], wrapped[2][k >> 2]);
-            x.add(y.shl(5)).add(z.shl(10)) // SIDE = 32 = 2⁵
-        });
-        core::array::from_fn(|c| {
+        // The eight texel indices, shared by the channels. (Loops, not
+        // closures: a closure would not inherit the batch driver's
+        // instruction set, and its lane operations would become calls.)
+        let mut flat = [L::Int::splat(0); 8];
+        for (k, index) in flat.iter_mut().enumerate() {
+            let mut at = [L::Int::splat(0); 3];
+            for a in 0..3 {
+                at[a] = base[a].add_c(((k >> a) & 1) as i32).and_c(mask);
+            }
+            *index = at[0].add(at[1].shl(5)).add(at[2].shl(10)); // SIDE = 32 = 2⁵
+        }
+        let mut out = [L::cst(0.0); C];
+        for (c, value) in out.iter_mut().enumerate() {
             let table = L::Elem::pick(&self.volume.single[c], &self.volume.double[c]);
-            let corner = flat.map(|i| L::gather(table, i));
-            let lerp = |t: L, a: L, b: L| a + t * (b - a);
-            let x: [L; 4] = core::array::from_fn(|k| lerp(frac[0], corner[2 * k], corner[2 * k + 1]));
-            let y = [lerp(frac[1], x[0], x[1]), lerp(frac[1], x[2], x[3])];
-            lerp(frac[2], y[0], y[1])
-        })
+            let mut corner = [L::cst(0.0); 8];
+            for k in 0..8 {
+                corner[k] = L::gather(table, flat[k]);
+            }
+            let mut x = [L::cst(0.0); 4];
+            for k in 0..4 {
+                x[k] = lerp(frac[0], corner[2 * k], corner[2 * k + 1]);
+            }
+            *value = lerp(frac[2], lerp(frac[1], x[0], x[1]), lerp(frac[1], x[2], x[3]));
+        }
+        out
     }
 
     #[inline(always)]
     fn eval<L: Lanes>(&self, p: [L; 3]) -> L {
         let [r, g] = self.texture::<L, 2>(p);
-        let [lo] = self.texture::<L, 1>(p.map(|c| c * L::cst(LOW)));
+        let mut low = p;
+        for c in low.iter_mut() {
+            *c = *c * L::cst(LOW);
+        }
+        let [lo] = self.texture::<L, 1>(low);
         let (s, c) = sin_cos_turns(lo);
         r * c + g * s
     }

@@ -164,7 +164,12 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
             }
         }
         let s = L::cst(self.scale);
-        (self.value(), grad.map(|gk| finite_or_nan(self.p, s * gk)))
+        // (A loop, not `map`: a closure would not inherit the batch
+        // driver's instruction set.)
+        for gk in grad.iter_mut() {
+            *gk = finite_or_nan(self.p, s * *gk);
+        }
+        (self.value(), grad)
     }
 }
 

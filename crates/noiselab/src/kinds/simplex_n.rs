@@ -81,7 +81,12 @@ impl SimplexN {
             sum = sum + x;
         }
         let s = sum * f;
-        let cell = p.map(|x| (x + s).floor().to_int_wrapping());
+        // (A loop, not `map`: a closure would not inherit the batch
+        // driver's instruction set.)
+        let mut cell = [L::Int::splat(0); D];
+        for d in 0..D {
+            cell[d] = (p[d] + s).floor().to_int_wrapping();
+        }
         let mut csum = L::Int::splat(0);
         for c in cell {
             csum = csum.add(c);

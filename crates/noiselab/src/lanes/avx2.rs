@@ -172,7 +172,13 @@ impl Lanes for X8 {
     }
     #[inline(always)]
     fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self {
-        X8::from_array(noise.sample_x8(p.map(|c| F32x8(c.to_array()))).0)
+        // (A loop, not `map`: a closure would not inherit the instruction
+        // set, and the conversions would become calls.)
+        let mut q = [F32x8::splat(0.0); D];
+        for (qk, pk) in q.iter_mut().zip(p) {
+            *qk = F32x8(pk.to_array());
+        }
+        X8::from_array(noise.sample_x8(q).0)
     }
     #[inline(always)]
     fn powf(self, e: Self) -> Self {

@@ -170,7 +170,12 @@ impl Lanes for X16 {
     }
     #[inline(always)]
     fn sample_dyn<const D: usize>(noise: &dyn crate::noise::DynNoise<D>, p: [Self; D]) -> Self {
-        X16::from_array(noise.sample_x16(p.map(|c| F32x16(c.to_array()))).0)
+        // (A loop, not `map`: see `lookup256`.)
+        let mut q = [F32x16::splat(0.0); D];
+        for (qk, pk) in q.iter_mut().zip(p) {
+            *qk = F32x16(pk.to_array());
+        }
+        X16::from_array(noise.sample_x16(q).0)
     }
     #[inline(always)]
     fn powf(self, e: Self) -> Self {
@@ -323,7 +328,12 @@ impl IntLanes for I16 {
         // two-table byte permutes cover 0..128 and 128..256, bit 7 picks.
         let t = &table.0;
         unsafe {
-            let [t0, t1, t2, t3] = [0, 64, 128, 192].map(|o| _mm512_loadu_si512(t[o..o + 64].as_ptr().cast()));
+            // Four loads, not a `map`: a closure would not inherit the
+            // instruction set (see `kinds::fast`, where one cost 9x).
+            let t0 = _mm512_loadu_si512(t[0..64].as_ptr().cast());
+            let t1 = _mm512_loadu_si512(t[64..128].as_ptr().cast());
+            let t2 = _mm512_loadu_si512(t[128..192].as_ptr().cast());
+            let t3 = _mm512_loadu_si512(t[192..256].as_ptr().cast());
             let bytes = _mm512_castsi128_si512(_mm512_cvtepi32_epi8(idx.0));
             let low = _mm512_permutex2var_epi8(t0, bytes, t1);
             let high = _mm512_permutex2var_epi8(t2, bytes, t3);
