@@ -432,8 +432,8 @@ impl Worley {
             // to 3D) with their metric and output as constants, so that the
             // formulas and the count of kept distances fold into the chunk
             // loop: dispatched per chunk, 2D F1 measured 1.6 and F2 3.3 times
-            // slower. Each arm is another copy of the loop (about 13 s more
-            // to build a test that fills Worley grids), so the rest share one.
+            // slower. Each arm is another copy of the loop (13-17 s more to
+            // build a test that fills Worley grids), so the rest share one.
             match (self.metric, self.output) {
                 _ if D > 3 => self.row_points::<B, D>(&row, i0, row_out),
                 (Metric::Euclidean, CellOutput::F1) => {
