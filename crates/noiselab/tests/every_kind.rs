@@ -291,6 +291,10 @@ fn large_grids_equal_the_scalar_api() {
     check("improved", &Improved::new(1), Grid::new([0.1, -3.0], [1.0 / 32.0, 1.0 / 40.0], [1031, 700]));
     check("simplex", &Simplex::new(1), Grid::new([0.1, -3.0], [0.01, 0.02], [700, 1031]));
     check("value", &Value::new(1), Grid::new([0.0; 3], [0.05; 3], [90, 80, 70]));
+    check("value", &Value::new(1), Grid::new([0.3, -2.0], [1.0 / 32.0, 1.0 / 24.0], [1000, 300]));
+    // Rows longer than the fractal's block: octaves fill pieces of rows.
+    let value_fbm = Fractal::new(|o| Value::new(o.seed), 1, 2, FractalMode::Fbm).unwrap();
+    check("fbm value", &value_fbm, Grid::new([0.3, -2.0], [1.0 / 32.0, 1.0 / 64.0], [70_000, 5]));
     check("fbm improved", &Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(), Grid::new([0.0; 2], [1.0 / 64.0; 2], [1500, 400]));
     check("worley", &Worley::new(3), Grid::new([-7.0; 2], [1.0 / 16.0; 2], [600, 600]));
 }

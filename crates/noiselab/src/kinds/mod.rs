@@ -39,11 +39,18 @@ pub(crate) fn fade5_deriv<L: Lanes>(t: L) -> L {
 #[inline(always)]
 pub(crate) fn interpolate<L: Lanes, const D: usize>(mut v: [L; MAX_CORNERS], s: [L; D]) -> L {
     for (d, sd) in s.iter().enumerate() {
-        for k in 0..(1 << (D - d - 1)) {
-            v[k] = lerp(*sd, v[2 * k], v[2 * k + 1]);
-        }
+        interpolate_axis(&mut v, D - d, *sd);
     }
     v[0]
+}
+
+/// One step of [`interpolate`]: the `2^dims` values in `v` blended in pairs
+/// along their lowest axis by weight `s`, into `v[..2^(dims − 1)]`.
+#[inline(always)]
+pub(crate) fn interpolate_axis<L: Lanes>(v: &mut [L; MAX_CORNERS], dims: usize, s: L) {
+    for k in 0..(1 << (dims - 1)) {
+        v[k] = lerp(s, v[2 * k], v[2 * k + 1]);
+    }
 }
 
 /// [`interpolate`] together with its gradient, by differentiating the same
@@ -115,6 +122,12 @@ impl Columns {
         &self.data[field * self.stride + at..]
     }
 
+    /// [`Columns::field`], to write.
+    #[inline(always)]
+    fn field_mut(&mut self, field: usize, at: usize) -> &mut [f32] {
+        &mut self.data[field * self.stride + at..]
+    }
+
     /// Field `field` of entries `at..at + WIDTH`.
     #[inline(always)]
     pub(crate) fn load<B: BatchLanes>(&self, field: usize, at: usize) -> B {
@@ -124,7 +137,7 @@ impl Columns {
     /// Store `v` as field `field` of entries `at..at + WIDTH`.
     #[inline(always)]
     pub(crate) fn store<B: BatchLanes>(&mut self, field: usize, at: usize, v: B) {
-        v.store(&mut self.data[field * self.stride + at..]);
+        v.store(self.field_mut(field, at));
     }
 
     /// Entries `first..first + width` of the first `fields` fields, checked
@@ -157,6 +170,14 @@ impl Entries<'_> {
         // width ≤ stride. So field·stride + at ≤ (fields − 1)·stride +
         // width − 1 < total·stride − first.
         unsafe { *self.from.get_unchecked(field * self.stride + at) }
+    }
+
+    /// Field `field` of the entries `at..at + WIDTH` past the first.
+    #[inline(always)]
+    pub(crate) fn load<B: BatchLanes>(&self, field: usize, at: usize) -> B {
+        assert!(field < self.fields && B::WIDTH <= self.width && at <= self.width - B::WIDTH);
+        // SAFETY: as in `get`, with `at + WIDTH − 1 < width` the last entry.
+        B::from_slice(unsafe { core::slice::from_raw_parts(self.from.as_ptr().add(field * self.stride + at), B::WIDTH) })
     }
 }
 
