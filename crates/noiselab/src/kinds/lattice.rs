@@ -16,6 +16,11 @@
 //! same IEEE operations on the same operands as [`Noise::get_f32`]: the
 //! results are identical bit for bit, only the work is shared.
 //!
+//! Flat kinds (value noise) go further without leaving the bits: their
+//! corners do not depend on the row, so the blend along axis 0 is the same
+//! on every row of a plane of cells. The fill forms it once per plane and
+//! writes the plane's rows from it, a block of columns at a time.
+//!
 //! [`Accuracy::Fast`] goes one step further for grids: along a row inside a
 //! cell, a lattice noise is `P(u) + s(u)·Q(u)` with `P`, `Q` affine in the
 //! position `u` and `s` the fade, so four coefficients per cell and row
