@@ -408,6 +408,7 @@ impl<N: NoiseGradient<D>, L: Lanes, const D: usize> Octaves<Dual<L, D>> for Grad
 
 /// Octave values already filled for a chunk of a grid: octave i from
 /// `i · stride` in `buffers`, the chunk starting `at` there.
+#[derive(Clone, Copy)]
 struct Filled<'a> {
     buffers: &'a [f32],
     stride: usize,
@@ -458,7 +459,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                 noise.fill_span::<B>(Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
             }
             let part = Span { axes: span.axes, start, accuracy: span.accuracy };
-            let filled = (&buffers[..], stride);
+            let filled = Filled { buffers: &buffers[..], stride, at: 0 };
             let out = &mut out[done..done + len];
             // The mode dispatched once per block.
             match self.mode {
@@ -476,12 +477,11 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
 
 impl<N> Fractal<N> {
     /// The grid fill's second pass over a block (`part`, `out.len()`
-    /// points): the octave loop in `mode` over the filled octaves
-    /// (`filled`: the buffers and octave stride), point by point.
+    /// points): the octave loop in `mode` over the filled octaves (`filled`,
+    /// from `at` 0), point by point.
     #[inline(always)]
-    fn combine_block<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Span<'_, D>, filled: (&[f32], usize), out: &mut [f32]) {
+    fn combine_block<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Span<'_, D>, filled: Filled<'_>, out: &mut [f32]) {
         let w = B::WIDTH;
-        let (buffers, stride) = filled;
         let xs = part.axes.axis(0);
         for RowPiece { idx, first, offset, len: n } in part.rows(out.len()) {
             let mut p = [B::cst(0.0); D];
@@ -493,7 +493,7 @@ impl<N> Fractal<N> {
                 let at = offset + k;
                 p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
                 // NaN where any coordinate is not finite, as point evaluation.
-                let v = crate::kinds::finite_or_nan(p, self.combine_as(mode, &Filled { buffers, stride, at }));
+                let v = crate::kinds::finite_or_nan(p, self.combine_as(mode, &Filled { at, ..filled }));
                 let count = (n - k).min(w);
                 store_prefix(v, &mut out[at..at + count]);
                 k += w;
