@@ -701,7 +701,10 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             }
         }
     }
-    band.write::<K, B, D>(kind, &blends, out);
+    // Guarded so that kinds which are not flat do not compile the band.
+    if by_plane {
+        band.write::<K, B, D>(kind, &blends, out);
+    }
 }
 
 /// Flat kinds: rows of one plane whose points are the same columns
