@@ -228,8 +228,8 @@ impl<const D: usize> Lattice<D> for Classic {
             2 => [&t.g2[0], &t.g2[1], &t.g2[1]],
             _ => [&t.g3[0], &t.g3[1], &t.g3[2]],
         };
-        let mut out = [Corner::zero(); MAX_CORNERS];
-        for (corner, c) in out.iter_mut().enumerate().take(1 << D) {
+        let mut floats = [[L::cst(0.0); 4]; MAX_CORNERS];
+        for (corner, f) in floats.iter_mut().enumerate().take(1 << D) {
             let mut b = self.p::<L>(self.index(cell[0], 0, corner_bit(corner, 0)));
             if D > 1 {
                 b = self.p::<L>(b.add(self.index(cell[1], 1, corner_bit(corner, 1))));
@@ -238,10 +238,10 @@ impl<const D: usize> Lattice<D> for Classic {
                 b = b.add(self.index(cell[2], 2, corner_bit(corner, 2)));
             }
             for d in 0..D {
-                c.f[d] = Self::g::<L>(tables[d], b);
+                f[d] = Self::g::<L>(tables[d], b);
             }
         }
-        out
+        lattice::float_records(&floats)
     }
 
     /// `f[0]` keeps axis 0's gradient component; `f[d]` becomes `r_d · g_d`.

@@ -136,6 +136,20 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
     }
 }
 
+/// Corner records holding only floats (`floats[c]` for corner `c`).
+///
+/// Kinds fill an array of their fields and build the records from it,
+/// rather than zeroing 16 whole records and filling those in: LLVM calls
+/// memset for such a zeroed array on every chunk, and records are 3 KiB on
+/// AVX2 against 2 KiB of floats. 3D points on AVX2 (Zen 3): classic 26.5 →
+/// 23.5 ns, modified 27.2 → 23.4. (Value noise measured slower this way and
+/// keeps its loop.) The closure is too small not to inline.
+#[inline(always)]
+pub(crate) fn float_records<L: Lanes>(floats: &[[L; 4]; MAX_CORNERS]) -> [Corner<L>; MAX_CORNERS] {
+    let zero = Corner::<L>::zero();
+    core::array::from_fn(|c| Corner { f: floats[c], i: zero.i })
+}
+
 /// The offsets from corner `c` to a point at position `f` in its cell.
 #[inline(always)]
 fn offsets<L: Lanes, const D: usize>(f: [L; D], c: usize) -> [L; D] {

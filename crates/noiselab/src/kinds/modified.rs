@@ -189,18 +189,18 @@ macro_rules! modified_lattice {
             /// The corners' gradient vectors, ±1 per axis from the hash's low bits.
             #[inline(always)]
             fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
-                let mut out = [Corner::zero(); MAX_CORNERS];
-                for (corner, c) in out.iter_mut().enumerate().take(1 << D) {
+                let mut floats = [[L::cst(0.0); 4]; MAX_CORNERS];
+                for (corner, f) in floats.iter_mut().enumerate().take(1 << D) {
                     let mut node = cell;
                     for (d, n) in node.iter_mut().enumerate() {
                         *n = n.add_c(corner_bit(corner, d));
                     }
                     let h = self.node_hash(self.period().wrap_cell(node));
                     for d in 0..D {
-                        c.f[d] = L::select(h.bit(d as u32), L::cst(1.0), L::cst(-1.0));
+                        f[d] = L::select(h.bit(d as u32), L::cst(1.0), L::cst(-1.0));
                     }
                 }
-                out
+                lattice::float_records(&floats)
             }
 
             /// `f[0]` keeps axis 0's gradient component; `f[d]` becomes the
