@@ -89,17 +89,17 @@ impl Simplex {
     }
 
     /// Gustavson's 3D hash of a corner `(i + a, j + b, k + c)`:
-    /// `permMod12[ii + a + perm[jj + b + perm[kk + c]]]`.
+    /// `permMod12[ii + a + perm[jj + b + perm[kk + c]]]`, given `perm[kk + c]`.
     #[inline(always)]
-    fn hash3<I: IntLanes>(&self, [ii, jj, kk]: [I; 3], [a, b, c]: [I; 3]) -> I {
-        self.gradient_index(ii.add(a).add(self.perm.at(jj.add(b).add(self.perm.at(kk.add(c))))))
+    fn hash3<I: IntLanes>(&self, [ii, jj]: [I; 2], [a, b]: [I; 2], perm_kc: I) -> I {
+        self.gradient_index(ii.add(a).add(self.perm.at(jj.add(b).add(perm_kc))))
     }
 
-    /// The 4D hash of corner `c + o`, `perm[c0 + o0 + perm[c1 + o1 + …]] & 31`.
+    /// The 4D hash of corner `c + o`, `perm[c0 + o0 + perm[c1 + o1 + …]] & 31`,
+    /// given the innermost `perm[c3 + o3]`.
     #[inline(always)]
-    fn hash4<I: IntLanes>(&self, c: [I; 4], o: [I; 4]) -> I {
-        let h = self.perm.at(c[3].add(o[3]));
-        let h = self.perm.at(c[2].add(o[2]).add(h));
+    fn hash4<I: IntLanes>(&self, c: [I; 4], o: [I; 4], perm_c3: I) -> I {
+        let h = self.perm.at(c[2].add(o[2]).add(perm_c3));
         let h = self.perm.at(c[1].add(o[1]).add(h));
         self.perm.at(c[0].add(o[0]).add(h)).and_c(31)
     }
@@ -204,15 +204,18 @@ impl Simplex {
         let x0 = xin - (L::from_int(i) - t);
         let y0 = yin - (L::from_int(j) - t);
         let upper = x0.gt(y0);
-        let (i1, j1) = (one_if::<L>(upper), one_if::<L>(!upper));
+        let i1 = one_if::<L>(upper);
         let x1 = minus_one_if(x0, upper) + g2;
         let y1 = minus_one_if(y0, !upper) + g2;
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
         let (ii, jj) = (i.and_c(255), j.and_c(255));
-        let gi0 = self.gradient_index(ii.add(self.perm.at(jj)));
-        let gi1 = self.gradient_index(ii.add(i1).add(self.perm.at(jj.add(j1))));
-        let gi2 = self.gradient_index(ii.add_c(1).add(self.perm.at(jj.add_c(1))));
+        // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0 and 2
+        // look up anyway: a select instead of a third table lookup.
+        let (p0, p1) = (self.perm.at(jj), self.perm.at(jj.add_c(1)));
+        let gi0 = self.gradient_index(ii.add(p0));
+        let gi1 = self.gradient_index(ii.add(i1).add(L::Int::select(upper, p0, p1)));
+        let gi2 = self.gradient_index(ii.add_c(1).add(p1));
         let g = [Self::grad3(gi0), Self::grad3(gi1), Self::grad3(gi2)];
         Corners { p: [xin, yin], r2: 0.5, scale: 70.0, g, d: [[x0, y0], [x1, y1], [x2, y2]] }
     }
@@ -233,20 +236,23 @@ impl Simplex {
         let (xy, yz, xz) = (x0.ge(y0), y0.ge(z0), x0.ge(z0));
         let (mi1, mj1, mk1) = (xy & (yz | xz), !xy & yz, (xy & !yz & !xz) | (!xy & !yz));
         let (mi2, mj2, mk2) = (xy | (yz & xz), !xy | yz, (xy & !yz) | (!xy & (!yz | !xz)));
-        let (i1, j1, k1) = (one_if::<L>(mi1), one_if::<L>(mj1), one_if::<L>(mk1));
-        let (i2, j2, k2) = (one_if::<L>(mi2), one_if::<L>(mj2), one_if::<L>(mk2));
+        let (i1, j1) = (one_if::<L>(mi1), one_if::<L>(mj1));
+        let (i2, j2) = (one_if::<L>(mi2), one_if::<L>(mj2));
         let (g3x2, g3x3) = (L::cst(2.0) * g3, L::cst(3.0) * g3);
         let d1 = [minus_one_if(x0, mi1) + g3, minus_one_if(y0, mj1) + g3, minus_one_if(z0, mk1) + g3];
         let d2 = [minus_one_if(x0, mi2) + g3x2, minus_one_if(y0, mj2) + g3x2, minus_one_if(z0, mk2) + g3x2];
         let one = L::cst(1.0);
         let d3 = [x0 - one + g3x3, y0 - one + g3x3, z0 - one + g3x3];
-        let cell = [i.and_c(255), j.and_c(255), k.and_c(255)];
+        let (cell, kk) = ([i.and_c(255), j.and_c(255)], k.and_c(255));
         let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
+        // perm[kk + c] for c ∈ {0, 1}: looked up once each, then selected
+        // per corner (two table lookups fewer per point).
+        let (pk0, pk1) = (self.perm.at(kk), self.perm.at(kk.add_c(1)));
         let g = [
-            Self::grad3(self.hash3(cell, [zero; 3])),
-            Self::grad3(self.hash3(cell, [i1, j1, k1])),
-            Self::grad3(self.hash3(cell, [i2, j2, k2])),
-            Self::grad3(self.hash3(cell, [unit; 3])),
+            Self::grad3(self.hash3(cell, [zero; 2], pk0)),
+            Self::grad3(self.hash3(cell, [i1, j1], L::Int::select(mk1, pk1, pk0))),
+            Self::grad3(self.hash3(cell, [i2, j2], L::Int::select(mk2, pk1, pk0))),
+            Self::grad3(self.hash3(cell, [unit; 2], pk1)),
         ];
         Corners { p: [xin, yin, zin], r2: 0.6, scale: 32.0, g, d: [[x0, y0, z0], d1, d2, d3] }
     }
@@ -290,9 +296,13 @@ impl Simplex {
         for a in 0..4 {
             cell[a] = c[a].and_c(255);
         }
+        // perm[c3 + o3] for o3 ∈ {0, 1}: looked up once each, then selected
+        // per corner (three table lookups fewer per point).
+        let (p0, p1) = (self.perm.at(cell[3]), self.perm.at(cell[3].add_c(1)));
         let mut g = [[L::cst(0.0); 4]; 5];
         for k in 0..5 {
-            g[k] = Self::grad4(self.hash4(cell, o[k]));
+            let inner = L::Int::select(o[k][3].eq(L::Int::splat(1)), p1, p0);
+            g[k] = Self::grad4(self.hash4(cell, o[k], inner));
         }
         Corners { p, r2: 0.6, scale: 27.0, g, d }
     }
