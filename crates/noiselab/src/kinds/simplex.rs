@@ -173,6 +173,13 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
     }
 }
 
+/// Offsets `o` (each 0 to 2) as an entry of a 3 × 3 × 3 chunk table, `9a + 3b + c`.
+#[inline(always)]
+fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
+    let (a, b) = (o[0], o[1]);
+    a.shl(3).add(a).add(b.shl(1).add(b)).add(o[2])
+}
+
 /// 1 where the mask is set, else 0.
 #[inline(always)]
 fn one_if<L: Lanes>(m: L::Mask) -> L::Int {
@@ -210,14 +217,51 @@ impl Simplex {
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
         let (ii, jj) = (i.and_c(255), j.and_c(255));
-        // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0 and 2
-        // look up anyway: a select instead of a third table lookup.
-        let (p0, p1) = (self.perm.at(jj), self.perm.at(jj.add_c(1)));
-        let gi0 = self.gradient_index(ii.add(p0));
-        let gi1 = self.gradient_index(ii.add(i1).add(L::Int::select(upper, p0, p1)));
-        let gi2 = self.gradient_index(ii.add_c(1).add(p1));
-        let g = [Self::grad3(gi0), Self::grad3(gi1), Self::grad3(gi2)];
+        let gi = match self.chunk_gradient_indices2::<L>(ii, jj, upper) {
+            Some(gi) => gi,
+            None => {
+                // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0
+                // and 2 look up anyway: a select instead of a third lookup.
+                let (p0, p1) = (self.perm.at(jj), self.perm.at(jj.add_c(1)));
+                let gi0 = self.gradient_index(ii.add(p0));
+                let gi1 = self.gradient_index(ii.add(i1).add(L::Int::select(upper, p0, p1)));
+                [gi0, gi1, self.gradient_index(ii.add_c(1).add(p1))]
+            }
+        };
+        let g = [Self::grad3(gi[0]), Self::grad3(gi[1]), Self::grad3(gi[2])];
         Corners { p: [xin, yin], r2: 0.5, scale: 70.0, g, d: [[x0, y0], [x1, y1], [x2, y2]] }
+    }
+
+    /// 2D gradient indices for a chunk whose lanes lie in cells `(i0, j0)`
+    /// to `(i0 + 1, j0 + 1)` (`i0`, `j0` lane 0's): the reference's hash of
+    /// the nine corners those cells reach, computed once into a table each
+    /// lane indexes, instead of five table lookups per lane. The same table
+    /// entries, so the same bits. `None` where the lanes spread further (or
+    /// the lane type looks tables up in registers).
+    #[inline(always)]
+    fn chunk_gradient_indices2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask) -> Option<[L::Int; 3]> {
+        if !L::CHUNK_TABLES {
+            return None;
+        }
+        let (i0, j0) = (ii.lane(0), jj.lane(0));
+        let (di, dj) = (ii.sub(L::Int::splat(i0)), jj.sub(L::Int::splat(j0)));
+        let (zero, one) = (L::Int::splat(0), L::Int::splat(1));
+        if L::any(di.lt(zero) | one.lt(di) | dj.lt(zero) | one.lt(dj)) {
+            return None;
+        }
+        // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a, b ≤ 2.
+        let (perm, mod12) = (&self.perm.entries().0, &self.mod12.0);
+        let mut table = [0i32; 16];
+        for b in 0..3 {
+            let pj = i32::from(perm[((j0 + b) & 255) as usize]);
+            for a in 0..3 {
+                table[(4 * a + b) as usize] = i32::from(mod12[((i0 + a + pj) & 255) as usize]);
+            }
+        }
+        // Corner 1 is (1, 0) above the diagonal, else (0, 1); corner 2 (1, 1).
+        let e0 = di.shl(2).add(dj);
+        let e1 = e0.add(L::Int::select(upper, L::Int::splat(4), one));
+        Some([L::Int::lookup16(&table, e0), L::Int::lookup16(&table, e1), L::Int::lookup16(&table, e0.add_c(5))])
     }
 
     #[inline(always)]
@@ -245,16 +289,65 @@ impl Simplex {
         let d3 = [x0 - one + g3x3, y0 - one + g3x3, z0 - one + g3x3];
         let (cell, kk) = ([i.and_c(255), j.and_c(255)], k.and_c(255));
         let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
-        // perm[kk + c] for c ∈ {0, 1}: looked up once each, then selected
-        // per corner (two table lookups fewer per point).
-        let (pk0, pk1) = (self.perm.at(kk), self.perm.at(kk.add_c(1)));
-        let g = [
-            Self::grad3(self.hash3(cell, [zero; 2], pk0)),
-            Self::grad3(self.hash3(cell, [i1, j1], L::Int::select(mk1, pk1, pk0))),
-            Self::grad3(self.hash3(cell, [i2, j2], L::Int::select(mk2, pk1, pk0))),
-            Self::grad3(self.hash3(cell, [unit; 2], pk1)),
-        ];
+        let (k1, k2) = (one_if::<L>(mk1), one_if::<L>(mk2));
+        let gi = match self.chunk_gradient_indices3::<L>([cell[0], cell[1], kk], [[i1, j1, k1], [i2, j2, k2]]) {
+            Some(gi) => gi,
+            None => {
+                // perm[kk + c] for c ∈ {0, 1}: looked up once each, then
+                // selected per corner (two table lookups fewer per point).
+                let (pk0, pk1) = (self.perm.at(kk), self.perm.at(kk.add_c(1)));
+                [
+                    self.hash3(cell, [zero; 2], pk0),
+                    self.hash3(cell, [i1, j1], L::Int::select(mk1, pk1, pk0)),
+                    self.hash3(cell, [i2, j2], L::Int::select(mk2, pk1, pk0)),
+                    self.hash3(cell, [unit; 2], pk1),
+                ]
+            }
+        };
+        let g = [Self::grad3(gi[0]), Self::grad3(gi[1]), Self::grad3(gi[2]), Self::grad3(gi[3])];
         Corners { p: [xin, yin, zin], r2: 0.6, scale: 32.0, g, d: [[x0, y0, z0], d1, d2, d3] }
+    }
+
+    /// 3D gradient indices for a chunk whose lanes lie in cells `c0` to
+    /// `c0 + (1, 1, 1)` (`c0` lane 0's), as [`Self::chunk_gradient_indices2`]: the
+    /// 27 corners those cells reach hashed once (39 lookups per chunk
+    /// instead of ten per lane), each lane's four corners read from that
+    /// table. `steps` are corners 1 and 2's offsets.
+    #[inline(always)]
+    fn chunk_gradient_indices3<L: Lanes>(&self, cell: [L::Int; 3], steps: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]> {
+        if !L::CHUNK_TABLES {
+            return None;
+        }
+        let (zero, one) = (L::Int::splat(0), L::Int::splat(1));
+        let mut c0 = [0i32; 3];
+        let mut d = [zero; 3];
+        let mut far = zero.lt(zero);
+        for a in 0..3 {
+            c0[a] = cell[a].lane(0);
+            d[a] = cell[a].sub(L::Int::splat(c0[a]));
+            far = far | d[a].lt(zero) | one.lt(d[a]);
+        }
+        if L::any(far) {
+            return None;
+        }
+        // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2.
+        let (perm, mod12) = (&self.perm.entries().0, &self.mod12.0);
+        let mut table = [0i32; 32];
+        for c in 0..3 {
+            let pk = i32::from(perm[((c0[2] + c) & 255) as usize]);
+            for b in 0..3 {
+                let pj = i32::from(perm[((c0[1] + b + pk) & 255) as usize]);
+                for a in 0..3 {
+                    table[(9 * a + 3 * b + c) as usize] = i32::from(mod12[((c0[0] + a + pj) & 255) as usize]);
+                }
+            }
+        }
+        let e0 = table_entry3(d);
+        let mut gi = [zero; 4];
+        for (g, e) in gi.iter_mut().zip([e0, e0.add(table_entry3(steps[0])), e0.add(table_entry3(steps[1])), e0.add_c(13)]) {
+            *g = L::Int::lookup32(&table, e);
+        }
+        Some(gi)
     }
 
     #[inline(always)]
