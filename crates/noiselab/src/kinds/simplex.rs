@@ -173,6 +173,28 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
     }
 }
 
+/// For a chunk table: lane 0's cells and each lane's
+/// cells less those, or `None` where the lane type looks tables up in
+/// registers or some lane is not in lane 0's cell or the next on an axis.
+#[inline(always)]
+fn chunk_cells<L: Lanes, const D: usize>(cells: [L::Int; D]) -> Option<([i32; D], [L::Int; D])> {
+    if !L::CHUNK_TABLES {
+        return None;
+    }
+    let (zero, one) = (L::Int::splat(0), L::Int::splat(1));
+    let (mut first, mut d) = ([0i32; D], [zero; D]);
+    let mut far = zero.lt(zero);
+    for a in 0..D {
+        first[a] = cells[a].lane(0);
+        d[a] = cells[a].sub(L::Int::splat(first[a]));
+        far = far | d[a].lt(zero) | one.lt(d[a]);
+    }
+    if L::any(far) {
+        return None;
+    }
+    Some((first, d))
+}
+
 /// Offsets `o` (each 0 to 2) as an entry of a 3 × 3 × 3 chunk table, `9a + 3b + c`.
 #[inline(always)]
 fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
@@ -240,15 +262,7 @@ impl Simplex {
     /// the lane type looks tables up in registers).
     #[inline(always)]
     fn chunk_gradient_indices2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask) -> Option<[L::Int; 3]> {
-        if !L::CHUNK_TABLES {
-            return None;
-        }
-        let (i0, j0) = (ii.lane(0), jj.lane(0));
-        let (di, dj) = (ii.sub(L::Int::splat(i0)), jj.sub(L::Int::splat(j0)));
-        let (zero, one) = (L::Int::splat(0), L::Int::splat(1));
-        if L::any(di.lt(zero) | one.lt(di) | dj.lt(zero) | one.lt(dj)) {
-            return None;
-        }
+        let ([i0, j0], [di, dj]) = chunk_cells::<L, 2>([ii, jj])?;
         // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a, b ≤ 2.
         let (perm, mod12) = (&self.perm.entries().0, &self.mod12.0);
         let mut table = [0i32; 16];
@@ -260,7 +274,7 @@ impl Simplex {
         }
         // Corner 1 is (1, 0) above the diagonal, else (0, 1); corner 2 (1, 1).
         let e0 = di.shl(2).add(dj);
-        let e1 = e0.add(L::Int::select(upper, L::Int::splat(4), one));
+        let e1 = e0.add(L::Int::select(upper, L::Int::splat(4), L::Int::splat(1)));
         Some([L::Int::lookup16(&table, e0), L::Int::lookup16(&table, e1), L::Int::lookup16(&table, e0.add_c(5))])
     }
 
@@ -315,21 +329,7 @@ impl Simplex {
     /// table. `steps` are corners 1 and 2's offsets.
     #[inline(always)]
     fn chunk_gradient_indices3<L: Lanes>(&self, cell: [L::Int; 3], steps: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]> {
-        if !L::CHUNK_TABLES {
-            return None;
-        }
-        let (zero, one) = (L::Int::splat(0), L::Int::splat(1));
-        let mut c0 = [0i32; 3];
-        let mut d = [zero; 3];
-        let mut far = zero.lt(zero);
-        for a in 0..3 {
-            c0[a] = cell[a].lane(0);
-            d[a] = cell[a].sub(L::Int::splat(c0[a]));
-            far = far | d[a].lt(zero) | one.lt(d[a]);
-        }
-        if L::any(far) {
-            return None;
-        }
+        let (c0, d) = chunk_cells::<L, 3>(cell)?;
         // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2.
         let (perm, mod12) = (&self.perm.entries().0, &self.mod12.0);
         let mut table = [0i32; 32];
@@ -343,7 +343,7 @@ impl Simplex {
             }
         }
         let e0 = table_entry3(d);
-        let mut gi = [zero; 4];
+        let mut gi = [L::Int::splat(0); 4];
         for (g, e) in gi.iter_mut().zip([e0, e0.add(table_entry3(steps[0])), e0.add(table_entry3(steps[1])), e0.add_c(13)]) {
             *g = L::Int::lookup32(&table, e);
         }
