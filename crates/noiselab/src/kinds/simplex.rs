@@ -173,9 +173,9 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
     }
 }
 
-/// For a chunk table: lane 0's cells and each lane's
-/// cells less those, or `None` where the lane type looks tables up in
-/// registers or some lane is not in lane 0's cell or the next on an axis.
+/// For a chunk table: lane 0's cells and each lane's cells less those, or
+/// `None` where the lane type looks tables up in registers or some lane is
+/// not in lane 0's cell or the next on an axis.
 #[inline(always)]
 fn chunk_cells<L: Lanes, const D: usize>(cells: [L::Int; D]) -> Option<([i32; D], [L::Int; D])> {
     if !L::CHUNK_TABLES {
@@ -263,13 +263,13 @@ impl Simplex {
     #[inline(always)]
     fn chunk_gradient_indices2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask) -> Option<[L::Int; 3]> {
         let ([i0, j0], [di, dj]) = chunk_cells::<L, 2>([ii, jj])?;
-        // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a, b ≤ 2.
-        let (perm, mod12) = (&self.perm.entries().0, &self.mod12.0);
+        // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a, b ≤
+        // 2, by the lanes' own hash on one lane.
         let mut table = [0i32; 16];
         for b in 0..3 {
-            let pj = i32::from(perm[((j0 + b) & 255) as usize]);
+            let pj = self.perm.at(j0 + b);
             for a in 0..3 {
-                table[(4 * a + b) as usize] = i32::from(mod12[((i0 + a + pj) & 255) as usize]);
+                table[(4 * a + b) as usize] = self.gradient_index(i0 + a + pj);
             }
         }
         // Corner 1 is (1, 0) above the diagonal, else (0, 1); corner 2 (1, 1).
@@ -330,15 +330,14 @@ impl Simplex {
     #[inline(always)]
     fn chunk_gradient_indices3<L: Lanes>(&self, cell: [L::Int; 3], steps: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]> {
         let (c0, d) = chunk_cells::<L, 3>(cell)?;
-        // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2.
-        let (perm, mod12) = (&self.perm.entries().0, &self.mod12.0);
+        // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2, by the lanes'
+        // own hash on one lane.
         let mut table = [0i32; 32];
         for c in 0..3 {
-            let pk = i32::from(perm[((c0[2] + c) & 255) as usize]);
+            let pk = self.perm.at(c0[2] + c);
             for b in 0..3 {
-                let pj = i32::from(perm[((c0[1] + b + pk) & 255) as usize]);
                 for a in 0..3 {
-                    table[(9 * a + 3 * b + c) as usize] = i32::from(mod12[((c0[0] + a + pj) & 255) as usize]);
+                    table[(9 * a + 3 * b + c) as usize] = self.hash3([c0[0], c0[1]], [a, b], pk);
                 }
             }
         }
