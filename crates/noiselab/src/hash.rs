@@ -1,7 +1,7 @@
 //! Lattice hashing shared by the kinds: Perlin's permutation tables and a
 //! table-free integer hash.
 
-use crate::lanes::{IntLanes, Table256};
+use crate::lanes::{BatchLanes, IntLanes, Table256};
 use alloc::sync::Arc;
 
 /// Perlin's reference permutation of 0..=255 (Improving Noise, 2002; also used
@@ -68,6 +68,13 @@ impl Permutation {
     #[inline(always)]
     pub fn entries(&self) -> &Table256 {
         &self.tables.lookup
+    }
+
+    /// `p[(first + k) & 255]` in lane k: consecutive entries, read from the
+    /// doubled table with one load (a run of at most 16 never wraps it).
+    #[inline(always)]
+    pub fn run<B: BatchLanes>(&self, first: i32) -> B::Int {
+        B::load_u8(&self.tables.doubled[(first & 255) as usize..])
     }
 
     /// `p[i]` per lane, for `0 ≤ i < 512` (the doubled table's range: the

@@ -187,6 +187,32 @@ impl Classic {
         L::gather(L::Elem::pick(&t.0, &t.1), i)
     }
 
+    /// The corners' gradients (see `corners`) from each lane's `p[bx]`
+    /// and `p[bx + 1]`.
+    #[inline(always)]
+    fn gradients_after<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
+        let t = &self.tables;
+        let tables: [&([f32; LEN], [f64; LEN]); 3] = match D {
+            1 => [&t.g1, &t.g1, &t.g1],
+            2 => [&t.g2[0], &t.g2[1], &t.g2[1]],
+            _ => [&t.g3[0], &t.g3[1], &t.g3[2]],
+        };
+        let mut floats = [[L::cst(0.0); 4]; MAX_CORNERS];
+        for (corner, f) in floats.iter_mut().enumerate().take(1 << D) {
+            let mut b = first[corner_bit(corner, 0) as usize];
+            if D > 1 {
+                b = self.p::<L>(b.add(self.index(cell[1], 1, corner_bit(corner, 1))));
+            }
+            if D > 2 {
+                b = b.add(self.index(cell[2], 2, corner_bit(corner, 2)));
+            }
+            for d in 0..D {
+                f[d] = Self::g::<L>(tables[d], b);
+            }
+        }
+        lattice::float_records(&floats)
+    }
+
     /// The permutation `p[i]`.
     #[inline(always)]
     fn p<L: Lanes>(&self, i: L::Int) -> L::Int {
@@ -222,26 +248,21 @@ impl<const D: usize> Lattice<D> for Classic {
     /// index, not hashed, as in 1985.
     #[inline(always)]
     fn corners<L: Lanes>(&self, cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
-        let t = &self.tables;
-        let tables: [&([f32; LEN], [f64; LEN]); 3] = match D {
-            1 => [&t.g1, &t.g1, &t.g1],
-            2 => [&t.g2[0], &t.g2[1], &t.g2[1]],
-            _ => [&t.g3[0], &t.g3[1], &t.g3[2]],
+        self.gradients_after([self.p::<L>(self.index(cell[0], 0, 0)), self.p::<L>(self.index(cell[0], 0, 1))], cell)
+    }
+
+    /// Untiled, a row's `p[bx]` are consecutive table entries (the table
+    /// repeats past 256): one load instead of a lookup per lane.
+    #[inline(always)]
+    fn point_row<B: BatchLanes>(&self, first: i32, rest: [i32; D]) -> Corner<B> {
+        let cells = lattice::row_points::<B, D>(first, rest);
+        let lower = if self.period.is_none() {
+            B::load_int(&self.tables.p[(first & 255) as usize..])
+        } else {
+            self.p::<B>(self.index(cells[0], 0, 0))
         };
-        let mut floats = [[L::cst(0.0); 4]; MAX_CORNERS];
-        for (corner, f) in floats.iter_mut().enumerate().take(1 << D) {
-            let mut b = self.p::<L>(self.index(cell[0], 0, corner_bit(corner, 0)));
-            if D > 1 {
-                b = self.p::<L>(b.add(self.index(cell[1], 1, corner_bit(corner, 1))));
-            }
-            if D > 2 {
-                b = b.add(self.index(cell[2], 2, corner_bit(corner, 2)));
-            }
-            for d in 0..D {
-                f[d] = Self::g::<L>(tables[d], b);
-            }
-        }
-        lattice::float_records(&floats)
+        // Corner 0 only: the upper corners' work is dead code.
+        self.gradients_after([lower, lower], cells)[0]
     }
 
     /// `f[0]` keeps axis 0's gradient component; `f[d]` becomes `r_d · g_d`.

@@ -88,6 +88,36 @@ impl Improved {
         L::select(h.bit(2), a, -a) + L::select(h.bit(1), b, -b) + L::select(h.bit(0), c, -c)
     }
 
+    /// Perlin's hash chain `p[p[p[X] + Y] + Z]` (and `+ W` in 4D) from
+    /// its first links `p[X]`, `p[X + 1]`, each lookup shared by the
+    /// corners it leads to; 1D and 2D continue the 3D chain with zero
+    /// coordinates. Tiled, each corner's cell wraps first.
+    #[inline(always)]
+    fn chain<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
+        let depth = if D == 4 { 4 } else { 3 };
+        let mut h = [L::Int::splat(0); MAX_CORNERS];
+        h[..2].copy_from_slice(&first);
+        let mut count = 2;
+        for d in 1..depth {
+            if d < D {
+                let (lower, upper) = (self.index(cells[d], d, 0), self.index(cells[d], d, 1));
+                for c in (0..count).rev() {
+                    h[c + count] = self.perm.at(h[c].add(upper));
+                    h[c] = self.perm.at(h[c].add(lower));
+                }
+                count *= 2;
+            } else {
+                for hc in h.iter_mut().take(count) {
+                    *hc = self.perm.at(*hc);
+                }
+            }
+        }
+        // Each record built whole from its hash, so nothing is zeroed first
+        // (see `lattice::float_records`): 3D points on AVX2 20.4 → 17.5 ns.
+        let zero = Corner::zero();
+        core::array::from_fn(|c| Corner { i: [h[c], zero.i[1]], f: zero.f })
+    }
+
     /// Perlin's index of a corner on an axis, `(X & 255) + bit`; tiled,
     /// the corner's cell wraps first.
     #[inline(always)]
@@ -161,34 +191,21 @@ impl<const D: usize> Lattice<D> for Improved {
         fade5_deriv(t)
     }
 
-    /// Perlin's hash chain `p[p[p[X] + Y] + Z]` (and `+ W` in 4D), each
-    /// lookup shared by the corners it leads to; 1D and 2D continue the 3D
-    /// chain with zero coordinates. Tiled, each corner's cell wraps first.
+    /// The hash chain ([`Improved::chain`]) from each lane's `p[X]`, `p[X + 1]`.
     #[inline(always)]
     fn corners<L: Lanes>(&self, cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
-        let depth = if D == 4 { 4 } else { 3 };
-        let mut h = [L::Int::splat(0); MAX_CORNERS];
-        h[0] = self.perm.at(self.index(cells[0], 0, 0));
-        h[1] = self.perm.at(self.index(cells[0], 0, 1));
-        let mut count = 2;
-        for d in 1..depth {
-            if d < D {
-                let (lower, upper) = (self.index(cells[d], d, 0), self.index(cells[d], d, 1));
-                for c in (0..count).rev() {
-                    h[c + count] = self.perm.at(h[c].add(upper));
-                    h[c] = self.perm.at(h[c].add(lower));
-                }
-                count *= 2;
-            } else {
-                for hc in h.iter_mut().take(count) {
-                    *hc = self.perm.at(*hc);
-                }
-            }
-        }
-        // Each record built whole from its hash, so nothing is zeroed first
-        // (see `lattice::float_records`): 3D points on AVX2 20.4 → 17.5 ns.
-        let zero = Corner::zero();
-        core::array::from_fn(|c| Corner { i: [h[c], zero.i[1]], f: zero.f })
+        let first = [self.perm.at(self.index(cells[0], 0, 0)), self.perm.at(self.index(cells[0], 0, 1))];
+        self.chain(first, cells)
+    }
+
+    /// Untiled, a row's `p[X]` are consecutive entries of the table: one
+    /// load for the lanes' first link instead of a lookup per lane.
+    #[inline(always)]
+    fn point_row<B: BatchLanes>(&self, first: i32, rest: [i32; D]) -> Corner<B> {
+        let cells = lattice::row_points::<B, D>(first, rest);
+        let lower = if self.period.is_none() { self.perm.run::<B>(first) } else { self.perm.at(self.index(cells[0], 0, 0)) };
+        // Corner 0 only: the upper corners' links are dead code.
+        self.chain([lower, lower], cells)[0]
     }
 
     /// 1D–3D: axis 0's coefficient (`f[0]`) and the terms of axes 1..

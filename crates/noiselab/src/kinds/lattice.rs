@@ -108,6 +108,14 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
         self.corners(at)[0]
     }
 
+    /// The records of lattice points `first, first + 1, …` along axis 0,
+    /// one per lane, at `rest` on axes 1.. (`rest[0]` unused): [`Lattice::point`]
+    /// there, which a kind may form faster knowing the points are consecutive.
+    #[inline(always)]
+    fn point_row<B: BatchLanes>(&self, first: i32, rest: [i32; D]) -> Corner<B> {
+        self.point::<B>(row_points::<B, D>(first, rest))
+    }
+
     /// A corner's record with the offsets along axes 1.. folded in
     /// (`offset[0]` is not read).
     fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L>;
@@ -134,6 +142,18 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
     fn scale(&self) -> f64 {
         1.0
     }
+}
+
+/// Lattice points `first, first + 1, …` along axis 0 (one per lane) at
+/// `rest` on axes 1...
+#[inline(always)]
+pub(crate) fn row_points<B: BatchLanes, const D: usize>(first: i32, rest: [i32; D]) -> [B::Int; D] {
+    let mut at = [B::Int::splat(0); D];
+    at[0] = B::iota().add(B::Int::splat(first));
+    for d in 1..D {
+        at[d] = B::Int::splat(rest[d]);
+    }
+    at
 }
 
 /// Corner records holding only floats (`floats[c]` for corner `c`).
@@ -329,18 +349,24 @@ impl<B: BatchLanes> Source<B> for OnePolynomial<'_> {
 
 /// Lanes at up to 2·WIDTH consecutive entries from `first`: each field is
 /// the two registers of those entries' values, permuted by `lane[next]`
-/// (each lane's entry minus `first`, plus `next`).
-struct PerLane<'a, B: BatchLanes> {
+/// (each lane's entry minus `first`, plus `next`). `NEAR`: the entries
+/// and the next fit in one register, so one permute serves (on AVX2 a
+/// two-register permute is two and a blend).
+struct PerLane<'a, B: BatchLanes, const NEAR: bool> {
     columns: &'a Columns,
     first: usize,
     lane: [B::Int; 2],
 }
 
-impl<B: BatchLanes> Source<B> for PerLane<'_, B> {
+impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     #[inline(always)]
     fn field(&self, k: usize, next: usize) -> B {
         let v = self.columns.field(k, self.first);
-        B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), self.lane[next])
+        if NEAR {
+            B::permute(B::from_slice(v), self.lane[next])
+        } else {
+            B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), self.lane[next])
+        }
     }
 }
 
@@ -466,12 +492,8 @@ impl<const D: usize> PointRows<D> {
             let base = s * K::HASHED.total();
             let mut v = 0;
             while v < points {
-                let mut at = [B::Int::splat(0); D];
-                at[0] = B::iota().add(B::Int::splat(min_cell.wrapping_add(v as i32)));
-                for d in 1..D {
-                    at[d] = B::Int::splat(want[r][d]);
-                }
-                store_record(&mut self.records, base, v, &kind.point::<B>(at), K::HASHED);
+                let point = kind.point_row::<B>(min_cell.wrapping_add(v as i32), want[r]);
+                store_record(&mut self.records, base, v, &point, K::HASHED);
                 v += B::WIDTH;
             }
             self.key[s] = Some(want[r]);
@@ -703,7 +725,12 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                         row.exact(kind, s, &Block { columns: records, first })
                     } else if last - first + 1 < 2 * w {
                         let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
-                        row.exact(kind, s, &PerLane { columns: records, first, lane: [lane, lane.add_c(1)] })
+                        let lane = [lane, lane.add_c(1)];
+                        if last - first + 1 < w {
+                            row.exact(kind, s, &PerLane::<B, true> { columns: records, first, lane })
+                        } else {
+                            row.exact(kind, s, &PerLane::<B, false> { columns: records, first, lane })
+                        }
                     } else {
                         // Far-apart cells (uneven or descending steps): one by one.
                         let at = B::load_int(&cell0[s..]);

@@ -262,9 +262,18 @@ impl BatchLanes for X8 {
         }
     }
     #[inline(always)]
+    fn permute(v: Self, idx: I8) -> Self {
+        X8(unsafe { _mm256_permutevar8x32_ps(v.0, idx.0) })
+    }
+    #[inline(always)]
     fn load_int(v: &[i32]) -> I8 {
         let v = &v[..8];
         I8(unsafe { _mm256_loadu_si256(v.as_ptr().cast()) })
+    }
+    #[inline(always)]
+    fn load_u8(v: &[u8]) -> I8 {
+        let v = &v[..8];
+        I8(unsafe { _mm256_cvtepu8_epi32(_mm_loadl_epi64(v.as_ptr().cast())) })
     }
 }
 

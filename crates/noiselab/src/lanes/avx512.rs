@@ -248,9 +248,18 @@ impl BatchLanes for X16 {
         X16(unsafe { _mm512_permutex2var_ps(lo.0, idx.0, hi.0) })
     }
     #[inline(always)]
+    fn permute(v: Self, idx: I16) -> Self {
+        X16(unsafe { _mm512_permutexvar_ps(idx.0, v.0) })
+    }
+    #[inline(always)]
     fn load_int(v: &[i32]) -> I16 {
         let v = &v[..16];
         I16(unsafe { _mm512_loadu_si512(v.as_ptr().cast()) })
+    }
+    #[inline(always)]
+    fn load_u8(v: &[u8]) -> I16 {
+        let v = &v[..16];
+        I16(unsafe { _mm512_cvtepu8_epi32(_mm_loadu_si128(v.as_ptr().cast())) })
     }
 }
 

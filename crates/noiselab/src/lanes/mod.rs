@@ -156,6 +156,9 @@ pub trait BatchLanes: Lanes<Elem = f32> {
     fn store_int(v: Self::Int, out: &mut [i32]);
     /// Integer lanes from `v[..WIDTH]`.
     fn load_int(v: &[i32]) -> Self::Int;
+    /// Integer lanes from the bytes `v[..WIDTH]`, zero-extended (one load
+    /// and widen, where a table lookup would load lane by lane).
+    fn load_u8(v: &[u8]) -> Self::Int;
     /// The lanes' bit patterns.
     fn to_bits(self) -> Self::Int;
     /// Lanes with the given bit patterns.
@@ -163,6 +166,8 @@ pub trait BatchLanes: Lanes<Elem = f32> {
     /// Per lane: entry `idx` of the `2·WIDTH` entries `lo` then `hi`
     /// (`idx & (2·WIDTH − 1)`): one two-register permute on AVX-512.
     fn permute2(lo: Self, hi: Self, idx: Self::Int) -> Self;
+    /// Per lane: entry `idx & (WIDTH − 1)` of `v` (one permute).
+    fn permute(v: Self, idx: Self::Int) -> Self;
 }
 
 /// Signed 32-bit integer lanes with wrapping arithmetic.

@@ -300,9 +300,25 @@ macro_rules! wide_lanes {
                 $f(out)
             }
             #[inline(always)]
+            fn permute(v: Self, idx: $i) -> Self {
+                let mut out = [0f32; $n];
+                for k in 0..$n {
+                    out[k] = v.0[(idx.0[k] as usize) & ($n - 1)];
+                }
+                $f(out)
+            }
+            #[inline(always)]
             fn load_int(v: &[i32]) -> $i {
                 let mut out = [0i32; $n];
                 out.copy_from_slice(&v[..$n]);
+                $i(out)
+            }
+            #[inline(always)]
+            fn load_u8(v: &[u8]) -> $i {
+                let mut out = [0i32; $n];
+                for (o, &b) in out.iter_mut().zip(&v[..$n]) {
+                    *o = b as i32;
+                }
                 $i(out)
             }
         }
