@@ -34,6 +34,8 @@ pub struct Permutation {
 struct Tables {
     doubled: [u8; 512],
     lookup: Table256,
+    /// `p[p[i]]`: two links of a chain whose second adds 0.
+    twice: Table256,
 }
 
 impl Permutation {
@@ -55,7 +57,8 @@ impl Permutation {
         let mut doubled = [0u8; 512];
         doubled[..256].copy_from_slice(p);
         doubled[256..].copy_from_slice(p);
-        Permutation { tables: Arc::new(Tables { doubled, lookup: Table256(*p) }) }
+        let twice = Table256(core::array::from_fn(|i| p[p[i] as usize]));
+        Permutation { tables: Arc::new(Tables { doubled, lookup: Table256(*p), twice }) }
     }
 
     /// The doubled table.
@@ -68,6 +71,13 @@ impl Permutation {
     #[inline(always)]
     pub fn entries(&self) -> &Table256 {
         &self.tables.lookup
+    }
+
+    /// `p[p[i & 255]]` per lane: one lookup for two links when the second
+    /// adds a zero coordinate (lower dimensions continuing a longer chain).
+    #[inline(always)]
+    pub fn twice<I: IntLanes>(&self, i: I) -> I {
+        I::lookup256(&self.tables.twice, i)
     }
 
     /// `p[(first + k) & 255]` in lane k: consecutive entries, read from the
