@@ -298,16 +298,22 @@ trait Source<B: BatchLanes> {
     }
 }
 
-/// Consecutive entries from `first`, one per lane.
-struct Block<'a> {
-    columns: &'a Columns,
-    first: usize,
+/// Consecutive entries from `first`, one per lane (and the next), of the
+/// first `fields` fields, bounds-checked once: per field and entry the
+/// checks were a third of the instructions of a chunk at grid step 1.
+struct Block<'a>(Entries<'a>);
+
+impl<'a> Block<'a> {
+    #[inline(always)]
+    fn new<B: BatchLanes>(columns: &'a Columns, first: usize, fields: usize) -> Self {
+        Block(columns.entries(fields, first, B::WIDTH + 1))
+    }
 }
 
 impl<B: BatchLanes> Source<B> for Block<'_> {
     #[inline(always)]
     fn field(&self, k: usize, next: usize) -> B {
-        self.columns.load(k, self.first + next)
+        self.0.load(k, next)
     }
 }
 
@@ -353,19 +359,26 @@ impl<B: BatchLanes> Source<B> for OnePolynomial<'_> {
 /// and the next fit in one register, so one permute serves (on AVX2 a
 /// two-register permute is two and a blend).
 struct PerLane<'a, B: BatchLanes, const NEAR: bool> {
-    columns: &'a Columns,
-    first: usize,
+    entries: Entries<'a>,
     lane: [B::Int; 2],
+}
+
+impl<'a, B: BatchLanes, const NEAR: bool> PerLane<'a, B, NEAR> {
+    /// Entries from `first` of the first `fields` fields (checked once, as [`Block`]).
+    #[inline(always)]
+    fn new(columns: &'a Columns, first: usize, fields: usize, lane: [B::Int; 2]) -> Self {
+        PerLane { entries: columns.entries(fields, first, 2 * B::WIDTH), lane }
+    }
 }
 
 impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     #[inline(always)]
     fn field(&self, k: usize, next: usize) -> B {
-        let v = self.columns.field(k, self.first);
+        let lo = self.entries.load(k, 0);
         if NEAR {
-            B::permute(B::from_slice(v), self.lane[next])
+            B::permute(lo, self.lane[next])
         } else {
-            B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), self.lane[next])
+            B::permute2(lo, self.entries.load(k, B::WIDTH), self.lane[next])
         }
     }
 }
@@ -623,7 +636,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             let offset = offsets(fs, 2 * r);
             let mut v = 0;
             while v < points {
-                let point = Block { columns: &point_rows.records, first: v }.record(from, 0, K::HASHED);
+                let point = Block::new::<B>(&point_rows.records, v, from + K::HASHED.total()).record(from, 0, K::HASHED);
                 store_record(&mut bound, to, v, &kind.bind(point, offset), K::BOUND);
                 v += w;
             }
@@ -660,7 +673,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             }
             let mut k = 0;
             while k < ncell {
-                let cells = Block { columns: &bound, first: k };
+                let cells = Block::new::<B>(&bound, k, rows * K::BOUND.total());
                 for (m, v) in polynomial(kind, &cells, &pair_weights).into_iter().enumerate() {
                     coef.store(m, k, v);
                 }
@@ -722,14 +735,15 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     // Corners read a cell's entry and the next one.
                     let v = if cells.consecutive && cells.count == w {
                         // Lane j in cell first + j: plain loads, no permutes.
-                        row.exact(kind, s, &Block { columns: records, first })
+                        row.exact(kind, s, &Block::new::<B>(records, first, rows * K::BOUND.total()))
                     } else if last - first + 1 < 2 * w {
                         let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
                         let lane = [lane, lane.add_c(1)];
+                        let fields = rows * K::BOUND.total();
                         if last - first + 1 < w {
-                            row.exact(kind, s, &PerLane::<B, true> { columns: records, first, lane })
+                            row.exact(kind, s, &PerLane::<B, true>::new(records, first, fields, lane))
                         } else {
-                            row.exact(kind, s, &PerLane::<B, false> { columns: records, first, lane })
+                            row.exact(kind, s, &PerLane::<B, false>::new(records, first, fields, lane))
                         }
                     } else {
                         // Far-apart cells (uneven or descending steps): one by one.
