@@ -584,7 +584,9 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     let room = points + 3 * w;
     let rows = PointRows::<D>::PER_PLANE;
     let mut point_rows = PointRows::<D>::new(K::HASHED, room);
-    let mut bound = Columns::new(rows * K::BOUND.total(), room);
+    // Each row's bound records, field-major: the fields a cell's corners read.
+    let bound_fields = rows * K::BOUND.total();
+    let mut bound = Columns::new(bound_fields, room);
     // Fast: each cell's row polynomial.
     let mut coef = Columns::new(if fast { 4 } else { 0 }, room);
     // By plane: the plane's blends along axis 0, by column.
@@ -649,7 +651,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             }
             if new_plane {
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
-                    let rec = OneCell::new(&bound, ch.cell, rows * K::BOUND.total());
+                    let rec = OneCell::new(&bound, ch.cell, bound_fields);
                     plane_blends(kind, axis.lanes::<B>(), &rec, &mut blends, ch.start);
                 }
             }
@@ -673,7 +675,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             }
             let mut k = 0;
             while k < ncell {
-                let cells = Block::new::<B>(&bound, k, rows * K::BOUND.total());
+                let cells = Block::new::<B>(&bound, k, bound_fields);
                 for (m, v) in polynomial(kind, &cells, &pair_weights).into_iter().enumerate() {
                     coef.store(m, k, v);
                 }
@@ -696,7 +698,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             (true, false) if whole => {
                 for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    let v = row.exact_at(kind, x, fade, &OneCell::new(records, ch.cell, rows * K::BOUND.total()));
+                    let v = row.exact_at(kind, x, fade, &OneCell::new(records, ch.cell, bound_fields));
                     emit(v, &mut out[o0 + ch.start..]);
                 }
             }
@@ -711,7 +713,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
-                        let rec = OneCell::new(records, ch.cell, rows * K::BOUND.total());
+                        let rec = OneCell::new(records, ch.cell, bound_fields);
                         emit(row.exact(kind, s, &rec), &mut out[o0 + s - a0..]);
                     }
                 }
@@ -735,15 +737,14 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     // Corners read a cell's entry and the next one.
                     let v = if cells.consecutive && cells.count == w {
                         // Lane j in cell first + j: plain loads, no permutes.
-                        row.exact(kind, s, &Block::new::<B>(records, first, rows * K::BOUND.total()))
+                        row.exact(kind, s, &Block::new::<B>(records, first, bound_fields))
                     } else if last - first + 1 < 2 * w {
                         let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
                         let lane = [lane, lane.add_c(1)];
-                        let fields = rows * K::BOUND.total();
                         if last - first + 1 < w {
-                            row.exact(kind, s, &PerLane::<B, true>::new(records, first, fields, lane))
+                            row.exact(kind, s, &PerLane::<B, true>::new(records, first, bound_fields, lane))
                         } else {
-                            row.exact(kind, s, &PerLane::<B, false>::new(records, first, fields, lane))
+                            row.exact(kind, s, &PerLane::<B, false>::new(records, first, bound_fields, lane))
                         }
                     } else {
                         // Far-apart cells (uneven or descending steps): one by one.
