@@ -240,7 +240,8 @@ impl<const D: usize> Lattice<D> for Improved {
         fade5_deriv(t)
     }
 
-    /// The hash chain ([`Improved::chain`]) from each lane's `p[X]`, `p[X + 1]`.
+    /// The records ([`Improved::records`]) of the hash chain
+    /// ([`Improved::chain`]) from each lane's `p[X]`, `p[X + 1]`.
     #[inline(always)]
     fn corners<L: Lanes>(&self, cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
         let first = [self.perm.at(self.index(cells[0], 0, 0)), self.perm.at(self.index(cells[0], 0, 1))];
