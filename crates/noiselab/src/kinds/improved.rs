@@ -284,6 +284,20 @@ impl<const D: usize> Lattice<D> for Improved {
             L::select(L::cst(0.0).lt(b.f[0].abs()), x * b.f[0] + b.f[1], b.f[1])
         }
     }
+
+    /// `x·c₀ + c` without the select: where axis 0 is not picked it adds
+    /// ±0 to `c`, which changes `c` only if it is a zero. Where the
+    /// offsets on axes 1.. are not all zero the gradient's two picked
+    /// offsets are not both zero, their sum is never −0, and the result is
+    /// `eval`'s bit for bit. (A quarter of a 3D grid point's time.)
+    #[inline(always)]
+    fn eval_unsigned_zero<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+        if D == 4 {
+            <Self as Lattice<D>>::eval(self, b, x)
+        } else {
+            x * b.f[0] + b.f[1]
+        }
+    }
 }
 
 macro_rules! impl_improved {

@@ -124,6 +124,17 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
     /// Must be affine in `x` for [`Accuracy::Fast`].
     fn eval<L: Lanes>(&self, bound: &Corner<L>, x: L) -> L;
 
+    /// [`Lattice::eval`] up to the sign of a zero result, and bit for bit
+    /// where the corner's offsets on axes 1.. are not all zero. Kinds may
+    /// drop guards that only keep a zero's sign: [`interpolate`] loses it
+    /// for every corner but corner 0 (the upper end of a lerp, `a + t·(b −
+    /// a)` with t ≥ +0, gives the same bits for b = +0 and b = −0, so a
+    /// corner upper on some axis never shows its zero's sign).
+    #[inline(always)]
+    fn eval_unsigned_zero<L: Lanes>(&self, bound: &Corner<L>, x: L) -> L {
+        self.eval(bound, x)
+    }
+
     /// The gradient of the corner's function (its value at each unit
     /// offset: right for gradient kinds, whose corners are linear).
     #[inline(always)]
@@ -230,7 +241,9 @@ pub(crate) fn sample<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, p: [L; D
     let mut v = [L::cst(0.0); MAX_CORNERS];
     for c in 0..(1 << D) {
         let off = offsets(f, c);
-        v[c] = kind.eval(&kind.bind(corners[c], off), off[0]);
+        let bound = kind.bind(corners[c], off);
+        // Only corner 0's zero can reach the result (`eval_unsigned_zero`).
+        v[c] = if c == 0 { kind.eval(&bound, off[0]) } else { kind.eval_unsigned_zero(&bound, off[0]) };
     }
     finish(kind, interpolate(v, fades(kind, f)))
 }
@@ -689,7 +702,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         // The points: for each run of columns in one cell, whole lanes.
         // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
         // end are overwritten by the next run or row, or not stored.
-        let row = Row { frac: &frac0, fade: &fade0, weights };
+        let row = Row { frac: &frac0, fade: &fade0, weights, off_line: (1..D).any(|d| f[d] != 0.0) };
         let row_end = i0 + n - lo;
         let (a0, a1) = (i0 - lo, row_end);
         let whole = a0 == 0 && a1 == cols;
@@ -853,6 +866,10 @@ struct Row<'a, B: BatchLanes, const D: usize> {
     frac: &'a [f32],
     fade: &'a [f32],
     weights: [B; D],
+    /// Whether the row is off the lattice lines along axis 0 (some offset
+    /// on axes 1.. is not zero), where corner 0 too takes
+    /// [`Lattice::eval_unsigned_zero`].
+    off_line: bool,
 }
 
 impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
@@ -867,7 +884,8 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
     fn exact_at<K: Lattice<D>>(&self, kind: &K, x: B, fade: B, rec: &impl Source<B>) -> B {
         let mut weights = self.weights;
         weights[0] = fade;
-        finish(kind, interpolate(corner_values(kind, x, rec), weights))
+        let values = if self.off_line { corner_values::<K, B, D, true>(kind, x, rec) } else { corner_values::<K, B, D, false>(kind, x, rec) };
+        finish(kind, interpolate(values, weights))
     }
 
     /// The same points from their cells' row polynomials ([`Accuracy::Fast`]).
@@ -878,13 +896,19 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
 }
 
 /// The values of a chunk's corners at positions `x` along axis 0, from
-/// their bound records.
+/// their bound records; `OFF_LINE` for a row off the lattice lines.
+/// Only corner 0's zero can reach the result ([`Lattice::eval_unsigned_zero`]).
 #[inline(always)]
-fn corner_values<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, x: B, rec: &impl Source<B>) -> [B; MAX_CORNERS] {
+fn corner_values<K: Lattice<D>, B: BatchLanes, const D: usize, const OFF_LINE: bool>(
+    kind: &K,
+    x: B,
+    rec: &impl Source<B>,
+) -> [B; MAX_CORNERS] {
     let xm1 = x - B::cst(1.0);
     let mut v = [B::cst(0.0); MAX_CORNERS];
     for c in 0..(1 << D) {
-        v[c] = kind.eval(&rec.corner(c, K::BOUND), if c & 1 == 1 { xm1 } else { x });
+        let (bound, at) = (rec.corner(c, K::BOUND), if c & 1 == 1 { xm1 } else { x });
+        v[c] = if OFF_LINE || c != 0 { kind.eval_unsigned_zero(&bound, at) } else { kind.eval(&bound, at) };
     }
     v
 }
@@ -900,7 +924,8 @@ fn plane_blends<K: Lattice<D>, B: BatchLanes, const D: usize>(
     blends: &mut Columns,
     at: usize,
 ) {
-    let mut v = corner_values(kind, x, rec);
+    // Every row of the plane shares these: corner 0 keeps its zero's sign.
+    let mut v = corner_values::<K, B, D, false>(kind, x, rec);
     interpolate_axis(&mut v, D, fade);
     for j in 0..(1 << D) / 4 {
         blends.store(2 * j, at, v[2 * j]);
