@@ -72,7 +72,8 @@ fn improved_oracle(p: [f64; 3]) -> f64 {
 #[test]
 fn improved_3d_keeps_the_reference_zero_signs() {
     let n = Improved::new(0);
-    // Integers, halves, and −1e-17, whose fraction rounds to 1.0.
+    // Integers, halves, a quarter, and points just below a line (−1e-17,
+    // whose fraction rounds to 1.0; 5 − 1e-15, whose does not).
     let mut coords: Vec<f64> = (-10..=10).map(f64::from).collect();
     coords.extend([0.5, -0.5, 0.25, -1e-17, 5.0 - 1e-15]);
     let (mut zeros, mut negative_zeros) = (0, 0);
