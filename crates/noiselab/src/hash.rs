@@ -87,6 +87,29 @@ impl Permutation {
         B::load_u8(&self.tables.doubled[(first & 255) as usize..])
     }
 
+    /// [`Permutation::at`] (or, `twice`, [`Permutation::twice`]) of each
+    /// of `idx`, in place: up to four vectors to one
+    /// [`IntLanes::lookup256x4`], a lone one by itself.
+    #[inline(always)]
+    pub fn at_each<I: IntLanes>(&self, idx: &mut [I], twice: bool) {
+        let table = if twice { &self.tables.twice } else { &self.tables.lookup };
+        // Element by element, not `copy_from_slice`: slices of vectors
+        // would be copied with `memmove` calls.
+        let n = idx.len();
+        for group in 0..n.div_ceil(4) {
+            let first = 4 * group;
+            if first + 1 == n {
+                idx[first] = I::lookup256(table, idx[first]);
+            } else {
+                let four = core::array::from_fn(|k| idx[(first + k).min(n - 1)]);
+                let looked = I::lookup256x4(table, four);
+                for (k, v) in looked.into_iter().enumerate().take(n - first) {
+                    idx[first + k] = v;
+                }
+            }
+        }
+    }
+
     /// `p[i]` per lane, for `0 ≤ i < 512` (the doubled table's range: the
     /// lookup reads `p[i & 255]`, the same entry).
     #[inline(always)]

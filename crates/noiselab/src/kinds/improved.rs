@@ -91,33 +91,42 @@ impl Improved {
     /// Perlin's hash chain `p[p[p[X] + Y] + Z]` (and `+ W` in 4D) from
     /// its first links `p[X]`, `p[X + 1]`, each lookup shared by the
     /// corners it leads to; 1D and 2D continue the 3D chain with zero
-    /// coordinates. Tiled, each corner's cell wraps first.
+    /// coordinates. Tiled, each corner's cell wraps first. Only corner 0's
+    /// chain is followed unless `all`.
+    ///
+    /// Written level by level with constant counts, not as a loop, so that
+    /// LLVM unrolls it and keeps the hashes in registers.
     #[inline(always)]
-    fn chain<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D]) -> [L::Int; MAX_CORNERS] {
-        let depth = if D == 4 { 4 } else { 3 };
+    fn chain<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D], all: bool) -> [L::Int; MAX_CORNERS] {
         let mut h = [L::Int::splat(0); MAX_CORNERS];
         h[..2].copy_from_slice(&first);
-        let mut count = 2;
-        let mut d = 1;
-        while d < depth {
-            // A link followed by a zero coordinate's (1D, 2D): both in one
-            // lookup of p∘p, the same entries.
-            let twice = d + 1 < depth && d + 1 >= D;
-            if d < D {
-                let (lower, upper) = (self.index(cells[d], d, 0), self.index(cells[d], d, 1));
-                for c in (0..count).rev() {
-                    h[c + count] = self.link(h[c].add(upper), twice);
-                    h[c] = self.link(h[c].add(lower), twice);
-                }
-                count *= 2;
-            } else {
-                for hc in h.iter_mut().take(count) {
-                    *hc = self.link(*hc, twice);
-                }
-            }
-            d += if twice { 2 } else { 1 };
+        // The link of axis 1; in 1D and 2D, followed by the zero coordinate
+        // of axis 2: both in one lookup of p∘p, the same entries.
+        if D > 1 {
+            self.branch::<L::Int, 2, D>(&mut h, cells[1], 1);
+        }
+        let count = if D > 1 { 4 } else { 2 };
+        self.perm.at_each(&mut h[..if all { count } else { 1 }], D <= 2);
+        if D > 2 {
+            self.branch::<L::Int, 4, D>(&mut h, cells[2], 2);
+            self.perm.at_each(&mut h[..if all { 8 } else { 1 }], false);
+        }
+        if D > 3 {
+            self.branch::<L::Int, 8, D>(&mut h, cells[3], 3);
+            self.perm.at_each(&mut h[..if all { 16 } else { 1 }], false);
         }
         h
+    }
+
+    /// The next axis's indices of the `COUNT` chains in `h`: each chain
+    /// branches into its lower (`h[c]`) and upper (`h[c + COUNT]`) corner.
+    #[inline(always)]
+    fn branch<I: IntLanes, const COUNT: usize, const D: usize>(&self, h: &mut [I; MAX_CORNERS], cell: I, axis: usize) {
+        let (lower, upper) = (self.index(cell, axis, 0), self.index(cell, axis, 1));
+        for c in 0..COUNT {
+            h[c + COUNT] = h[c].add(upper);
+            h[c] = h[c].add(lower);
+        }
     }
 
     /// The records of lattice points from their hashes: the hash (4D) or
@@ -155,16 +164,6 @@ impl Improved {
     fn coefficients<L: Lanes>(&self, h: L::Int) -> [L; 4] {
         let [cx, cy, cz] = &GRADIENTS[self.variant as usize];
         [L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h), L::cst(0.0)]
-    }
-
-    /// `p[i]`, or `p[p[i]]` (`twice`).
-    #[inline(always)]
-    fn link<I: IntLanes>(&self, i: I, twice: bool) -> I {
-        if twice {
-            self.perm.twice(i)
-        } else {
-            self.perm.at(i)
-        }
     }
 
     /// Perlin's index of a corner on an axis, `(X & 255) + bit`; tiled,
@@ -244,8 +243,9 @@ impl<const D: usize> Lattice<D> for Improved {
     /// ([`Improved::chain`]) from each lane's `p[X]`, `p[X + 1]`.
     #[inline(always)]
     fn corners<L: Lanes>(&self, cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
-        let first = [self.perm.at(self.index(cells[0], 0, 0)), self.perm.at(self.index(cells[0], 0, 1))];
-        self.records::<L, D>(&self.chain::<L, D>(first, cells))
+        let mut first = [self.index(cells[0], 0, 0), self.index(cells[0], 0, 1)];
+        self.perm.at_each(&mut first, false);
+        self.records::<L, D>(&self.chain::<L, D>(first, cells, true))
     }
 
     /// Untiled, a row's `p[X]` are consecutive entries of the table: one
@@ -254,8 +254,7 @@ impl<const D: usize> Lattice<D> for Improved {
     fn point_row<B: BatchLanes>(&self, first: i32, rest: [i32; D]) -> Corner<B> {
         let cells = lattice::row_points::<B, D>(first, rest);
         let lower = if self.period.is_none() { self.perm.run::<B>(first) } else { self.perm.at(self.index(cells[0], 0, 0)) };
-        // Corner 0 only: the upper corners' links are dead code.
-        self.record::<B, D>(self.chain::<B, D>([lower, lower], cells)[0])
+        self.record::<B, D>(self.chain::<B, D>([lower, lower], cells, false)[0])
     }
 
     /// 1D–3D: axis 0's coefficient (`f[0]`) and the terms of axes 1..

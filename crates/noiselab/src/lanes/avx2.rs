@@ -355,6 +355,49 @@ impl IntLanes for I8 {
         I8::from_array(out)
     }
     #[inline(always)]
+    fn lookup256x4(table: &Table256, idx: [Self; 4]) -> [Self; 4] {
+        // The 32 indices' low bytes in one register. Sixteen byte shuffles,
+        // one per sixteen-entry row of the table, each look up the low
+        // nibbles; a tree of blends then picks the row by bits 4, 5, 6 and
+        // 7. About 60 operations for 32 lookups, against four instructions
+        // and a store-forwarding stall per lane with scalar loads (Zen 3's
+        // gathers measured slower still: 3.6 ns for eight lanes).
+        unsafe {
+            let byte = _mm256_set1_epi32(255);
+            let [a, b, c, d] = idx;
+            let (a, b) = (_mm256_and_si256(a.0, byte), _mm256_and_si256(b.0, byte));
+            let (c, d) = (_mm256_and_si256(c.0, byte), _mm256_and_si256(d.0, byte));
+            // Per 128-bit half: a b c d's first four lanes, then their last four.
+            let bytes = _mm256_packus_epi16(_mm256_packus_epi32(a, b), _mm256_packus_epi32(c, d));
+            let low = _mm256_and_si256(bytes, _mm256_set1_epi8(15));
+            // `blendv` reads bit 7 of each byte: shift bit 4 (5, 6) there.
+            let (bit4, bit5, bit6) = (_mm256_slli_epi16::<3>(bytes), _mm256_slli_epi16::<2>(bytes), _mm256_slli_epi16::<1>(bytes));
+            let mut pairs = [_mm256_setzero_si256(); 8];
+            // No closure for a row's shuffle: it would not inherit AVX2.
+            for (rows, p) in table.0.chunks_exact(32).zip(pairs.iter_mut()) {
+                let even = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_load_si128(rows.as_ptr().cast())), low);
+                let odd = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_load_si128(rows[16..].as_ptr().cast())), low);
+                *p = _mm256_blendv_epi8(even, odd, bit4);
+            }
+            let mut quads = [_mm256_setzero_si256(); 4];
+            for (j, q) in quads.iter_mut().enumerate() {
+                *q = _mm256_blendv_epi8(pairs[2 * j], pairs[2 * j + 1], bit5);
+            }
+            let lower = _mm256_blendv_epi8(quads[0], quads[1], bit6);
+            let upper = _mm256_blendv_epi8(quads[2], quads[3], bit6);
+            let picked = _mm256_blendv_epi8(lower, upper, bytes);
+            // Unpacking with zeros undoes the packs' interleaving.
+            let zero = _mm256_setzero_si256();
+            let (ab, cd) = (_mm256_unpacklo_epi8(picked, zero), _mm256_unpackhi_epi8(picked, zero));
+            [
+                I8(_mm256_unpacklo_epi16(ab, zero)),
+                I8(_mm256_unpackhi_epi16(ab, zero)),
+                I8(_mm256_unpacklo_epi16(cd, zero)),
+                I8(_mm256_unpackhi_epi16(cd, zero)),
+            ]
+        }
+    }
+    #[inline(always)]
     fn lookup16(table: &[i32; 16], idx: Self) -> Self {
         // Two eight-entry permutes, bit 3 picks.
         unsafe {

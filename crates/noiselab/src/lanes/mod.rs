@@ -207,6 +207,14 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
     /// Per lane: `table[idx & 255]`, a byte table of 256 entries (four
     /// register-wide byte permutes on AVX-512 VBMI instead of sixteen loads).
     fn lookup256(table: &Table256, idx: Self) -> Self;
+    /// [`IntLanes::lookup256`] of four index vectors at once: on AVX2 their
+    /// 32 low bytes go through one set of byte shuffles instead of 32
+    /// scalar loads.
+    #[inline(always)]
+    fn lookup256x4(table: &Table256, idx: [Self; 4]) -> [Self; 4] {
+        let [a, b, c, d] = idx;
+        [Self::lookup256(table, a), Self::lookup256(table, b), Self::lookup256(table, c), Self::lookup256(table, d)]
+    }
     /// Per lane: `table[idx & 15]` (one permute on AVX-512).
     fn lookup16(table: &[i32; 16], idx: Self) -> Self;
     /// Per lane: `table[idx & 31]` (one two-table permute on AVX-512).
