@@ -256,6 +256,31 @@ impl<const D: usize> Iterator for RowIter<'_, D> {
 /// lanes, chunk by chunk along each row.
 #[inline(always)]
 pub fn fill_pointwise<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+    fill_chunks::<_, B, D>(&mut Pointwise(noise), span, out)
+}
+
+/// A grid's points evaluated a chunk of lanes at a time, in order along
+/// each row, with whatever the evaluator carries from one chunk to the
+/// next (a kind's per-chunk tables). A trait, not a closure: a closure's
+/// body would not inherit the batch driver's instruction set.
+pub(crate) trait ChunkSampler<B: BatchLanes, const D: usize> {
+    /// The values at the chunk's points.
+    fn sample(&mut self, p: [B; D]) -> B;
+}
+
+/// [`Noise::sample`] chunk by chunk, nothing carried.
+struct Pointwise<'a, N>(&'a N);
+
+impl<N: Noise<D>, B: BatchLanes, const D: usize> ChunkSampler<B, D> for Pointwise<'_, N> {
+    #[inline(always)]
+    fn sample(&mut self, p: [B; D]) -> B {
+        self.0.sample(p)
+    }
+}
+
+/// [`fill_pointwise`] through a [`ChunkSampler`].
+#[inline(always)]
+pub(crate) fn fill_chunks<S: ChunkSampler<B, D>, B: BatchLanes, const D: usize>(noise: &mut S, span: Span<'_, D>, out: &mut [f32]) {
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
     for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {

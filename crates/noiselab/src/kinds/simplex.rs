@@ -4,7 +4,8 @@
 
 use super::finite_or_nan;
 use crate::hash::Permutation;
-use crate::lanes::{IntLanes, Lanes, Table256};
+use crate::grid::{self, ChunkSampler, Span};
+use crate::lanes::{BatchLanes, IntLanes, Lanes, Table256};
 use alloc::sync::Arc;
 use crate::noise::{Noise, NoiseGradient};
 
@@ -202,6 +203,27 @@ fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
     a.shl(3).add(a).add(b.shl(1).add(b)).add(o[2])
 }
 
+/// The last chunk table ([`Simplex::chunk_gradient_indices3`]) and lane 0's
+/// cell it was made for: along a grid row, neighbouring chunks mostly start
+/// in the same cell and share it.
+struct ChunkTable<const D: usize> {
+    cell: Option<[i32; D]>,
+    entries: [i32; 32],
+}
+
+impl<const D: usize> ChunkTable<D> {
+    #[inline(always)]
+    fn empty() -> Self {
+        ChunkTable { cell: None, entries: [0; 32] }
+    }
+}
+
+/// A grid's chunks in row order, each chunk table kept for the next.
+struct TableReuse<'a, const D: usize> {
+    noise: &'a Simplex,
+    memo: ChunkTable<D>,
+}
+
 /// 1 where the mask is set, else 0.
 #[inline(always)]
 fn one_if<L: Lanes>(m: L::Mask) -> L::Int {
@@ -223,7 +245,7 @@ fn minus_one_if<L: Lanes>(x: L, m: L::Mask) -> L {
 
 impl Simplex {
     #[inline(always)]
-    fn corners2<L: Lanes>(&self, [xin, yin]: [L; 2]) -> Corners<L, 2, 3> {
+    fn corners2<L: Lanes>(&self, [xin, yin]: [L; 2], memo: &mut ChunkTable<2>) -> Corners<L, 2, 3> {
         let f2 = L::cst(0.5 * (3f64.sqrt() - 1.0));
         let g2 = L::cst((3.0 - 3f64.sqrt()) / 6.0);
         let s = (xin + yin) * f2;
@@ -239,7 +261,7 @@ impl Simplex {
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
         let (ii, jj) = (i.and_c(255), j.and_c(255));
-        let gi = match self.chunk_gradient_indices2::<L>(ii, jj, upper) {
+        let gi = match self.chunk_gradient_indices2::<L>(ii, jj, upper, memo) {
             Some(gi) => gi,
             None => {
                 // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0
@@ -261,25 +283,28 @@ impl Simplex {
     /// entries, so the same bits. `None` where the lanes spread further (or
     /// the lane type looks tables up in registers).
     #[inline(always)]
-    fn chunk_gradient_indices2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask) -> Option<[L::Int; 3]> {
+    fn chunk_gradient_indices2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask, memo: &mut ChunkTable<2>) -> Option<[L::Int; 3]> {
         let ([i0, j0], [di, dj]) = chunk_cells::<L, 2>([ii, jj])?;
-        // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a, b ≤
-        // 2, by the lanes' own hash on one lane.
-        let mut table = [0i32; 16];
-        for b in 0..3 {
-            let pj = self.perm.at(j0 + b);
-            for a in 0..3 {
-                table[(4 * a + b) as usize] = self.gradient_index(i0 + a + pj);
+        if memo.cell != Some([i0, j0]) {
+            // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a,
+            // b ≤ 2, by the lanes' own hash on one lane.
+            for b in 0..3 {
+                let pj = self.perm.at(j0 + b);
+                for a in 0..3 {
+                    memo.entries[(4 * a + b) as usize] = self.gradient_index(i0 + a + pj);
+                }
             }
+            memo.cell = Some([i0, j0]);
         }
+        let table: &[i32; 16] = memo.entries[..16].try_into().unwrap();
         // Corner 1 is (1, 0) above the diagonal, else (0, 1); corner 2 (1, 1).
         let e0 = di.shl(2).add(dj);
         let e1 = e0.add(L::Int::select(upper, L::Int::splat(4), L::Int::splat(1)));
-        Some([L::Int::lookup16(&table, e0), L::Int::lookup16(&table, e1), L::Int::lookup16(&table, e0.add_c(5))])
+        Some([L::Int::lookup16(table, e0), L::Int::lookup16(table, e1), L::Int::lookup16(table, e0.add_c(5))])
     }
 
     #[inline(always)]
-    fn corners3<L: Lanes>(&self, [xin, yin, zin]: [L; 3]) -> Corners<L, 3, 4> {
+    fn corners3<L: Lanes>(&self, [xin, yin, zin]: [L; 3], memo: &mut ChunkTable<3>) -> Corners<L, 3, 4> {
         let f3 = L::cst(1.0 / 3.0);
         let g3 = L::cst(1.0 / 6.0);
         let s = (xin + yin + zin) * f3;
@@ -304,7 +329,7 @@ impl Simplex {
         let (cell, kk) = ([i.and_c(255), j.and_c(255)], k.and_c(255));
         let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
         let (k1, k2) = (one_if::<L>(mk1), one_if::<L>(mk2));
-        let gi = match self.chunk_gradient_indices3::<L>([cell[0], cell[1], kk], [[i1, j1, k1], [i2, j2, k2]]) {
+        let gi = match self.chunk_gradient_indices3::<L>([cell[0], cell[1], kk], [[i1, j1, k1], [i2, j2, k2]], memo) {
             Some(gi) => gi,
             None => {
                 // perm[kk + c] for c ∈ {0, 1}: looked up once each, then
@@ -328,23 +353,26 @@ impl Simplex {
     /// instead of ten per lane), each lane's four corners read from that
     /// table. `steps` are corners 1 and 2's offsets.
     #[inline(always)]
-    fn chunk_gradient_indices3<L: Lanes>(&self, cell: [L::Int; 3], steps: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]> {
+    fn chunk_gradient_indices3<L: Lanes>(&self, cell: [L::Int; 3], steps: [[L::Int; 3]; 2], memo: &mut ChunkTable<3>) -> Option<[L::Int; 4]> {
         let (c0, d) = chunk_cells::<L, 3>(cell)?;
-        // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2, by the lanes'
-        // own hash on one lane.
-        let mut table = [0i32; 32];
-        for c in 0..3 {
-            let pk = self.perm.at(c0[2] + c);
-            for b in 0..3 {
-                for a in 0..3 {
-                    table[(9 * a + 3 * b + c) as usize] = self.hash3([c0[0], c0[1]], [a, b], pk);
+        if memo.cell != Some(c0) {
+            // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2, by the
+            // lanes' own hash on one lane.
+            for c in 0..3 {
+                let pk = self.perm.at(c0[2] + c);
+                for b in 0..3 {
+                    for a in 0..3 {
+                        memo.entries[(9 * a + 3 * b + c) as usize] = self.hash3([c0[0], c0[1]], [a, b], pk);
+                    }
                 }
             }
+            memo.cell = Some(c0);
         }
+        let table = &memo.entries;
         let e0 = table_entry3(d);
         let mut gi = [L::Int::splat(0); 4];
         for (g, e) in gi.iter_mut().zip([e0, e0.add(table_entry3(steps[0])), e0.add(table_entry3(steps[1])), e0.add_c(13)]) {
-            *g = L::Int::lookup32(&table, e);
+            *g = L::Int::lookup32(table, e);
         }
         Some(gi)
     }
@@ -433,4 +461,34 @@ macro_rules! impl_simplex {
         }
     )*};
 }
-impl_simplex!(1 => corners1, 2 => corners2, 3 => corners3, 4 => corners4);
+impl_simplex!(1 => corners1, 4 => corners4);
+
+/// 2D and 3D, whose chunks look their hashes up in a chunk table: grid
+/// rows keep the last table for the next chunk ([`TableReuse`]).
+macro_rules! impl_simplex_tabled {
+    ($($d:literal => $corners:ident),*) => {$(
+        impl Noise<$d> for Simplex {
+            #[inline(always)]
+            fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
+                self.$corners(p, &mut ChunkTable::empty()).value()
+            }
+            #[inline(always)]
+            fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
+                grid::fill_chunks::<_, B, $d>(&mut TableReuse { noise: self, memo: ChunkTable::empty() }, span, out)
+            }
+        }
+        impl<B: BatchLanes> ChunkSampler<B, $d> for TableReuse<'_, $d> {
+            #[inline(always)]
+            fn sample(&mut self, p: [B; $d]) -> B {
+                self.noise.$corners(p, &mut self.memo).value()
+            }
+        }
+        impl NoiseGradient<$d> for Simplex {
+            #[inline(always)]
+            fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
+                self.$corners(p, &mut ChunkTable::empty()).value_gradient()
+            }
+        }
+    )*};
+}
+impl_simplex_tabled!(2 => corners2, 3 => corners3);
