@@ -101,7 +101,10 @@ impl Permutation {
             if first + 1 == n {
                 idx[first] = I::lookup256(table, idx[first]);
             } else {
-                let four = core::array::from_fn(|k| idx[(first + k).min(n - 1)]);
+                // No `array::from_fn`: its closure would not inherit the
+                // batch driver's instruction set (ARCHITECTURE.md).
+                let last = n - 1;
+                let four = [idx[first], idx[first + 1], idx[(first + 2).min(last)], idx[(first + 3).min(last)]];
                 let looked = I::lookup256x4(table, four);
                 for (k, v) in looked.into_iter().enumerate().take(n - first) {
                     idx[first + k] = v;

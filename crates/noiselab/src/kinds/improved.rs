@@ -103,16 +103,16 @@ impl Improved {
         // The link of axis 1; in 1D and 2D, followed by the zero coordinate
         // of axis 2: both in one lookup of p∘p, the same entries.
         if D > 1 {
-            self.branch::<L::Int, 2, D>(&mut h, cells[1], 1);
+            self.branch::<L::Int, 2>(&mut h, cells[1], 1);
         }
         let count = if D > 1 { 4 } else { 2 };
         self.perm.at_each(&mut h[..if all { count } else { 1 }], D <= 2);
         if D > 2 {
-            self.branch::<L::Int, 4, D>(&mut h, cells[2], 2);
+            self.branch::<L::Int, 4>(&mut h, cells[2], 2);
             self.perm.at_each(&mut h[..if all { 8 } else { 1 }], false);
         }
         if D > 3 {
-            self.branch::<L::Int, 8, D>(&mut h, cells[3], 3);
+            self.branch::<L::Int, 8>(&mut h, cells[3], 3);
             self.perm.at_each(&mut h[..if all { 16 } else { 1 }], false);
         }
         h
@@ -121,7 +121,7 @@ impl Improved {
     /// The next axis's indices of the `COUNT` chains in `h`: each chain
     /// branches into its lower (`h[c]`) and upper (`h[c + COUNT]`) corner.
     #[inline(always)]
-    fn branch<I: IntLanes, const COUNT: usize, const D: usize>(&self, h: &mut [I; MAX_CORNERS], cell: I, axis: usize) {
+    fn branch<I: IntLanes, const COUNT: usize>(&self, h: &mut [I; MAX_CORNERS], cell: I, axis: usize) {
         let (lower, upper) = (self.index(cell, axis, 0), self.index(cell, axis, 1));
         for c in 0..COUNT {
             h[c + COUNT] = h[c].add(upper);

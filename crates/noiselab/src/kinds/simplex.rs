@@ -203,7 +203,7 @@ fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
     a.shl(3).add(a).add(b.shl(1).add(b)).add(o[2])
 }
 
-/// The last chunk table ([`Simplex::chunk_gradient_indices3`]) and lane 0's
+/// The last chunk table ([`Simplex::chunk_gradient_indices2`], `…3`) and lane 0's
 /// cell it was made for: along a grid row, neighbouring chunks mostly start
 /// in the same cell and share it.
 struct ChunkTable<const D: usize> {
