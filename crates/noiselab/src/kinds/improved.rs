@@ -297,6 +297,23 @@ impl<const D: usize> Lattice<D> for Improved {
             x * b.f[0] + b.f[1]
         }
     }
+
+    /// 1D–3D: the offsets' dot product with the coefficients, without
+    /// [`pick`]'s guards: the two picked axes give ±u ± v exactly and the
+    /// third adds a zero, which can change only a zero's sign. (Random 3D
+    /// points on AVX2: 8.84 → 8.24 ns.)
+    #[inline(always)]
+    fn value_unsigned_zero<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> L {
+        if D == 4 {
+            <Self as Lattice<D>>::eval_unsigned_zero(self, &<Self as Lattice<D>>::bind(self, corner, offset), offset[0])
+        } else {
+            let mut v = offset[0] * corner.f[0];
+            for d in 1..D {
+                v = v + offset[d] * corner.f[d];
+            }
+            v
+        }
+    }
 }
 
 macro_rules! impl_improved {
