@@ -787,6 +787,9 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     if by_plane {
         band.write::<K, B, D>(kind, &blends, out);
     }
+    for table in [point_rows.records, bound, coef, blends] {
+        table.recycle();
+    }
 }
 
 /// Flat kinds: rows of one plane whose points are the same columns

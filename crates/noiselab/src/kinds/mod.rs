@@ -11,7 +11,6 @@ pub mod sparse;
 pub mod value;
 pub mod worley;
 
-use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::lanes::{lerp, BatchLanes, IntLanes, Lanes};
@@ -105,9 +104,22 @@ pub(crate) struct Columns {
 }
 
 impl Columns {
-    /// Room for `fields` fields of `entries` entries (zeros).
+    /// Room for `fields` fields of `entries` entries (zeros), in a
+    /// per-thread scratch buffer ([`crate::scratch`]): hand it back with
+    /// [`Columns::recycle`].
     pub(crate) fn new(fields: usize, entries: usize) -> Self {
-        Columns { stride: entries, fields, data: vec![0.0; fields * entries] }
+        let len = fields * entries;
+        let mut data = crate::scratch::take(len);
+        data.truncate(len);
+        data.fill(0.0);
+        Columns { stride: entries, fields, data }
+    }
+
+    /// Give the buffer back for the next table on this thread. (A method,
+    /// not `Drop`: drop glue in the grid fills' kernels measured 5 % slower
+    /// on 2D fBm.)
+    pub(crate) fn recycle(self) {
+        crate::scratch::give_back(self.data);
     }
 
     /// Entries per field.

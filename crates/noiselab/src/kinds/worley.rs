@@ -451,6 +451,7 @@ impl Worley {
                 _ => self.row_points::<B, D>(&row, i0, row_out),
             }
         }
+        features.recycle();
     }
 
     /// This noise with `metric` and `output` (given as constants by the
