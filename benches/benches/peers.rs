@@ -8,6 +8,7 @@
 //! | group | workload |
 //! |---|---|
 //! | `2d_perlin` `2d_simplex` `2d_value` `2d_cellular_f1` `2d_fbm6` | 2048² grid |
+//! | `2d_perlin_tiles` `2d_fbm6_tiles` | the same 2048² samples as 64 × 64 tiles of 32², one call per tile, each tile's 1024 values contiguous (game chunks: per-call and per-row costs count) |
 //! | `3d_perlin` `3d_simplex` | 256³ grid |
 //! | `3d_perlin_points` | 4 000 000 splitmix64 points in [−1000, 1000]³ |
 //! | `scalar_f64_3d_perlin_grid` / `_points` | one `f64` call per point: noiselab `Improved::get` vs noise-rs `Perlin::get` |
@@ -19,6 +20,8 @@
 //! API where it has one (Perlin 2D/3D, value 2D, cellular 2D, fBm 2D; the 3D
 //! grid is written z fastest, the crate's own order) and its batch API
 //! elsewhere; `quick-noise-batch` is the batch API on those grid workloads.
+//! The tile groups run only the libraries with a uniform-grid API (a
+//! per-point API costs the same per point in tiles as in one grid).
 //! simdnoise has no Perlin, so its `2d_fbm6` is fBm of simplex; its block API
 //! returns a fresh `Vec` every call, which is timed (as a user pays it).
 //!
@@ -45,6 +48,8 @@ const SEED: u32 = 1337;
 const SIDE_2D: usize = 2048;
 const SIDE_3D: usize = 256;
 const POINTS: usize = 4_000_000;
+/// Side of a tile in the tile groups (2048 / 32 = 64 tiles a side).
+const TILE: usize = 32;
 
 // ---------------------------------------------------------------- harness
 
@@ -292,6 +297,20 @@ mod qn {
         Grid::<3, A>::new(side, side, side).seed(1337).builder::<Fbm, G>().frequency(FREQ).fill(out);
     }
 
+    /// Uniform-grid API on tile (`i`, `j`) of `TILE`² (`super::TILE`).
+    #[dispatch_simd(A)]
+    pub fn tile2<G: GridGenerator<2>>(i: usize, j: usize, octaves: usize, out: &mut [f32]) {
+        Grid::<2, A>::new(super::TILE, super::TILE)
+            .grid_position(i as f64, j as f64)
+            .seed(1337)
+            .builder::<Fbm, G>()
+            .octaves(octaves)
+            .frequency(FREQ)
+            .lacunarity(2.0)
+            .persistence(0.5)
+            .fill(out);
+    }
+
     /// Batch API on the grid's own coordinate iterators, 2D, x fastest.
     #[dispatch_simd(A)]
     pub fn batch2<G: BatchGenerator<2>>(side: usize, octaves: usize, out: &mut [f32]) {
@@ -443,6 +462,43 @@ fn grids_2d(c: &mut Criterion) {
     g.finish();
 }
 
+/// The 2048² grid as tiles of `TILE`², one fill call each (tile-major
+/// output), for the libraries with a uniform-grid API.
+fn tiles_2d(c: &mut Criterion) {
+    let n = SIDE_2D * SIDE_2D;
+    let per_side = SIDE_2D / TILE;
+    // Tile t is (t mod per_side, t div per_side); its samples are the big grid's.
+    let tiles: Vec<(usize, usize)> = (0..per_side * per_side).map(|t| (t % per_side, t / per_side)).collect();
+    let grids: Vec<Grid<2>> = tiles
+        .iter()
+        .map(|&(i, j)| Grid::new([(i * TILE) as f64 * SPACING, (j * TILE) as f64 * SPACING], [SPACING; 2], [TILE, TILE]))
+        .collect();
+    let mut out = buffer::<f32>(n);
+    let out = &mut out[..];
+
+    let mut g = Case::new(c, "2d_perlin_tiles", n);
+    let lab = Improved::new(SEED);
+    g.fill("noiselab", out, |o| each_tile(o, |t, tile| lab.fill_grid(&grids[t], tile).unwrap()));
+    g.fill("noiselab-fast", out, |o| each_tile(o, |t, tile| lab.fill_grid_fast(&grids[t], tile).unwrap()));
+    g.fill("quick-noise", out, |o| each_tile(o, |t, tile| qn::tile2::<quick_noise::Perlin>(tiles[t].0, tiles[t].1, 1, tile)));
+    g.finish();
+
+    let mut g = Case::new(c, "2d_fbm6_tiles", n);
+    let lab = Fractal::new(|o| Improved::new(o.seed), SEED, 6, FractalMode::Fbm).unwrap();
+    g.fill("noiselab", out, |o| each_tile(o, |t, tile| lab.fill_grid(&grids[t], tile).unwrap()));
+    g.fill("noiselab-fast", out, |o| each_tile(o, |t, tile| lab.fill_grid_fast(&grids[t], tile).unwrap()));
+    g.fill("quick-noise", out, |o| each_tile(o, |t, tile| qn::tile2::<quick_noise::Perlin>(tiles[t].0, tiles[t].1, 6, tile)));
+    g.finish();
+}
+
+/// `f(t, tile)` for each tile of `out`, in order.
+#[inline(always)]
+fn each_tile(out: &mut [f32], mut f: impl FnMut(usize, &mut [f32])) {
+    for (t, tile) in out.chunks_exact_mut(TILE * TILE).enumerate() {
+        f(t, tile);
+    }
+}
+
 fn grids_3d(c: &mut Criterion) {
     let n = SIDE_3D * SIDE_3D * SIDE_3D;
     let grid = Grid::new([0.0; 3], [SPACING; 3], [SIDE_3D; 3]);
@@ -561,5 +617,5 @@ fn ours_only(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, grids_2d, grids_3d, points_3d, scalar_grid, ours_only);
+criterion_group!(benches, grids_2d, tiles_2d, grids_3d, points_3d, scalar_grid, ours_only);
 criterion_main!(benches);

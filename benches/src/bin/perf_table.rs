@@ -45,6 +45,8 @@ const WORKLOADS: &[(&str, &str)] = &[
     ("2d_value", "2D value, 2048² grid"),
     ("2d_cellular_f1", "2D cellular F1, 2048² grid"),
     ("2d_fbm6", "2D fBm, 6 octaves, 2048² grid"),
+    ("2d_perlin_tiles", "2D Perlin, 2048² as 4096 tiles of 32²"),
+    ("2d_fbm6_tiles", "2D fBm, 6 octaves, 2048² as 4096 tiles of 32²"),
     ("3d_perlin", "3D Perlin, 256³ grid"),
     ("3d_simplex", "3D simplex, 256³ grid"),
     ("3d_perlin_points", "3D Perlin, 4M random points"),
