@@ -19,6 +19,15 @@ fn grid2() -> (Grid<2>, Vec<f32>) {
     (grid, vec![0f32; grid.len()])
 }
 
+/// The 256² grid of `grid2` as 64 tiles of 32², one fill call each
+/// (game chunks): against `grid2`'s counts, the cost per call and per row.
+fn tiles2() -> (Vec<Grid<2>>, Vec<f32>) {
+    let tiles = (0..64)
+        .map(|t| Grid::new([(t % 8 * 32) as f64 * STEP, (t / 8 * 32) as f64 * STEP], [STEP; 2], [32, 32]))
+        .collect();
+    (tiles, vec![0f32; 256 * 256])
+}
+
 fn grid3() -> (Grid<3>, Vec<f32>) {
     let grid = Grid::new([0.0; 3], [STEP; 3], [32, 32, 32]);
     (grid, vec![0f32; grid.len()])
@@ -76,6 +85,26 @@ fn fbm6_2d_256x256((grid, mut out): (Grid<2>, Vec<f32>)) -> Vec<f32> {
 }
 
 #[library_benchmark]
+#[bench::improved(setup = tiles2)]
+fn improved_2d_64_tiles_of_32x32((tiles, mut out): (Vec<Grid<2>>, Vec<f32>)) -> Vec<f32> {
+    let noise = Improved::new(1337);
+    for (grid, tile) in tiles.iter().zip(out.chunks_exact_mut(32 * 32)) {
+        Noise::<2>::fill_grid(black_box(&noise), grid, tile).unwrap();
+    }
+    out
+}
+
+#[library_benchmark]
+#[bench::fbm6(setup = tiles2)]
+fn fbm6_2d_64_tiles_of_32x32((tiles, mut out): (Vec<Grid<2>>, Vec<f32>)) -> Vec<f32> {
+    let fbm = Fractal::new(|o| Improved::new(o.seed), 1337, 6, FractalMode::Fbm).unwrap();
+    for (grid, tile) in tiles.iter().zip(out.chunks_exact_mut(32 * 32)) {
+        Noise::<2>::fill_grid(black_box(&fbm), grid, tile).unwrap();
+    }
+    out
+}
+
+#[library_benchmark]
 #[bench::improved(setup = grid3)]
 fn improved_3d_32x32x32((grid, mut out): (Grid<3>, Vec<f32>)) -> Vec<f32> {
     Noise::<3>::fill_grid(black_box(&Improved::new(1337)), &grid, &mut out).unwrap();
@@ -112,6 +141,8 @@ library_benchmark_group!(
         value_2d_256x256,
         cellular_f1_2d_256x256,
         fbm6_2d_256x256,
+        improved_2d_64_tiles_of_32x32,
+        fbm6_2d_64_tiles_of_32x32,
         improved_3d_32x32x32,
         simplex_3d_32x32x32,
         improved_3d_32k_random_points,
