@@ -278,10 +278,13 @@ mod qn {
 
     const FREQ: f32 = 1.0 / 32.0;
 
-    /// Uniform-grid API, 2D, `side`², x fastest.
+    /// Uniform-grid API, 2D, `side`², x fastest, at grid position `at`
+    /// (in units of `side`: (0, 0) for a whole grid, a tile's indices for
+    /// a tile).
     #[dispatch_simd(A)]
-    pub fn grid2<G: GridGenerator<2>>(side: usize, octaves: usize, out: &mut [f32]) {
+    pub fn grid2<G: GridGenerator<2>>(side: usize, at: (usize, usize), octaves: usize, out: &mut [f32]) {
         Grid::<2, A>::new(side, side)
+            .grid_position(at.0 as f64, at.1 as f64)
             .seed(1337)
             .builder::<Fbm, G>()
             .octaves(octaves)
@@ -295,20 +298,6 @@ mod qn {
     #[dispatch_simd(A)]
     pub fn grid3<G: GridGenerator<3>>(side: usize, out: &mut [f32]) {
         Grid::<3, A>::new(side, side, side).seed(1337).builder::<Fbm, G>().frequency(FREQ).fill(out);
-    }
-
-    /// Uniform-grid API on tile (`i`, `j`) of `TILE`² (`super::TILE`).
-    #[dispatch_simd(A)]
-    pub fn tile2<G: GridGenerator<2>>(i: usize, j: usize, octaves: usize, out: &mut [f32]) {
-        Grid::<2, A>::new(super::TILE, super::TILE)
-            .grid_position(i as f64, j as f64)
-            .seed(1337)
-            .builder::<Fbm, G>()
-            .octaves(octaves)
-            .frequency(FREQ)
-            .lacunarity(2.0)
-            .persistence(0.5)
-            .fill(out);
     }
 
     /// Batch API on the grid's own coordinate iterators, 2D, x fastest.
@@ -365,7 +354,7 @@ fn grids_2d(c: &mut Criterion) {
     g.fill("fastnoise-lite", out, |o| loop2_f32(o, |x, y| lite.get_noise_2d(x, y)));
     let lib = libnoise::Source::<2>::improved_perlin(SEED as u64);
     g.fill("libnoise", out, |o| loop2_f64(o, |x, y| lib.sample([x, y])));
-    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Perlin>(SIDE_2D, 1, o));
+    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Perlin>(SIDE_2D, (0, 0), 1, o));
     g.fill("quick-noise-batch", out, |o| qn::batch2::<quick_noise::Perlin>(SIDE_2D, 1, o));
     let nf = noise_functions::Perlin.seed(SEED as i32);
     g.fill("noise-functions", out, |o| loop2_f32(o, |x, y| nf.sample2([x, y])));
@@ -403,7 +392,7 @@ fn grids_2d(c: &mut Criterion) {
     g.fill("fastnoise-lite", out, |o| loop2_f32(o, |x, y| lite.get_noise_2d(x, y)));
     let lib = libnoise::Source::<2>::value(SEED as u64);
     g.fill("libnoise", out, |o| loop2_f64(o, |x, y| lib.sample([x, y])));
-    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Value>(SIDE_2D, 1, o));
+    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Value>(SIDE_2D, (0, 0), 1, o));
     g.fill("quick-noise-batch", out, |o| qn::batch2::<quick_noise::Value>(SIDE_2D, 1, o));
     let nf = noise_functions::Value.seed(SEED as i32);
     g.fill("noise-functions", out, |o| loop2_f32(o, |x, y| nf.sample2([x, y])));
@@ -427,7 +416,7 @@ fn grids_2d(c: &mut Criterion) {
     g.fresh("simdnoise", || sd.generate().0);
     let lib = libnoise::Source::<2>::worley(SEED as u64);
     g.fill("libnoise", out, |o| loop2_f64(o, |x, y| lib.sample([x, y])));
-    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Cellular>(SIDE_2D, 1, o));
+    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Cellular>(SIDE_2D, (0, 0), 1, o));
     g.fill("quick-noise-batch", out, |o| qn::batch2::<quick_noise::Cellular>(SIDE_2D, 1, o));
     let nf = noise_functions::CellDistance::default().seed(SEED as i32);
     g.fill("noise-functions", out, |o| loop2_f32(o, |x, y| nf.sample2([x, y])));
@@ -453,7 +442,7 @@ fn grids_2d(c: &mut Criterion) {
     g.fresh("simdnoise", || sd.generate().0);
     let lib = libnoise::Source::<2>::improved_perlin(SEED as u64).fbm(6, 1.0, 2.0, 0.5);
     g.fill("libnoise", out, |o| loop2_f64(o, |x, y| lib.sample([x, y])));
-    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Perlin>(SIDE_2D, 6, o));
+    g.fill("quick-noise", out, |o| qn::grid2::<quick_noise::Perlin>(SIDE_2D, (0, 0), 6, o));
     g.fill("quick-noise-batch", out, |o| qn::batch2::<quick_noise::Perlin>(SIDE_2D, 6, o));
     let nf = noise_functions::Perlin.fbm(6, 0.5, 2.0).seed(SEED as i32);
     g.fill("noise-functions", out, |o| loop2_f32(o, |x, y| nf.sample2([x, y])));
@@ -480,14 +469,14 @@ fn tiles_2d(c: &mut Criterion) {
     let lab = Improved::new(SEED);
     g.fill("noiselab", out, |o| each_tile(o, |t, tile| lab.fill_grid(&grids[t], tile).unwrap()));
     g.fill("noiselab-fast", out, |o| each_tile(o, |t, tile| lab.fill_grid_fast(&grids[t], tile).unwrap()));
-    g.fill("quick-noise", out, |o| each_tile(o, |t, tile| qn::tile2::<quick_noise::Perlin>(tiles[t].0, tiles[t].1, 1, tile)));
+    g.fill("quick-noise", out, |o| each_tile(o, |t, tile| qn::grid2::<quick_noise::Perlin>(TILE, tiles[t], 1, tile)));
     g.finish();
 
     let mut g = Case::new(c, "2d_fbm6_tiles", n);
     let lab = Fractal::new(|o| Improved::new(o.seed), SEED, 6, FractalMode::Fbm).unwrap();
     g.fill("noiselab", out, |o| each_tile(o, |t, tile| lab.fill_grid(&grids[t], tile).unwrap()));
     g.fill("noiselab-fast", out, |o| each_tile(o, |t, tile| lab.fill_grid_fast(&grids[t], tile).unwrap()));
-    g.fill("quick-noise", out, |o| each_tile(o, |t, tile| qn::tile2::<quick_noise::Perlin>(tiles[t].0, tiles[t].1, 6, tile)));
+    g.fill("quick-noise", out, |o| each_tile(o, |t, tile| qn::grid2::<quick_noise::Perlin>(TILE, tiles[t], 6, tile)));
     g.finish();
 }
 
