@@ -28,7 +28,7 @@
 //!
 //! [`Noise::get_f32`]: crate::Noise::get_f32
 
-use super::{corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, MAX_CORNERS};
+use super::{corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, EntriesMut, MAX_CORNERS};
 use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use alloc::vec;
@@ -285,7 +285,7 @@ pub(crate) fn sample_gradient<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K,
 /// Store a record (`fields` of them, from field `base`) for entries
 /// `at..at + WIDTH`.
 #[inline(always)]
-fn store_record<B: BatchLanes>(columns: &mut Columns, base: usize, at: usize, r: &Corner<B>, fields: Fields) {
+fn store_record<B: BatchLanes>(columns: &mut EntriesMut<'_>, base: usize, at: usize, r: &Corner<B>, fields: Fields) {
     for m in 0..fields.floats {
         columns.store(base + m, at, r.f[m]);
     }
@@ -343,6 +343,20 @@ impl<B: BatchLanes> Source<B> for Block<'_> {
     }
 }
 
+/// Lanes at consecutive entries from `at` of a view checked once for a
+/// whole row of them.
+struct At<'a> {
+    entries: &'a Entries<'a>,
+    at: usize,
+}
+
+impl<B: BatchLanes> Source<B> for At<'_> {
+    #[inline(always)]
+    fn field(&self, k: usize, next: usize) -> B {
+        self.entries.load(k, self.at + next)
+    }
+}
+
 /// Every lane at one entry (and the next): its first `fields` fields,
 /// bounds-checked once.
 struct OneCell<'a>(Entries<'a>);
@@ -385,26 +399,19 @@ impl<B: BatchLanes> Source<B> for OnePolynomial<'_> {
 /// and the next fit in one register, so one permute serves (on AVX2 a
 /// two-register permute is two and a blend).
 struct PerLane<'a, B: BatchLanes, const NEAR: bool> {
-    entries: Entries<'a>,
+    entries: &'a Entries<'a>,
+    first: usize,
     lane: [B::Int; 2],
-}
-
-impl<'a, B: BatchLanes, const NEAR: bool> PerLane<'a, B, NEAR> {
-    /// Entries from `first` of the first `fields` fields (checked once, as [`Block`]).
-    #[inline(always)]
-    fn new(columns: &'a Columns, first: usize, fields: usize, lane: [B::Int; 2]) -> Self {
-        PerLane { entries: columns.entries(fields, first, 2 * B::WIDTH), lane }
-    }
 }
 
 impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     #[inline(always)]
     fn field(&self, k: usize, next: usize) -> B {
-        let lo = self.entries.load(k, 0);
+        let lo = self.entries.load(k, self.first);
         if NEAR {
             B::permute(lo, self.lane[next])
         } else {
-            B::permute2(lo, self.entries.load(k, B::WIDTH), self.lane[next])
+            B::permute2(lo, self.entries.load(k, self.first + B::WIDTH), self.lane[next])
         }
     }
 }
@@ -437,20 +444,49 @@ fn cell_runs(cells: &[i32], min_cell: i32, w: usize) -> Vec<(usize, usize, usize
 }
 
 /// A chunk of columns' cells: the smallest and largest, and whether they are
-/// `first, first + 1, …` column by column (`count` columns).
+/// `first, first + 1, …` column by column.
 #[derive(Clone, Copy)]
 struct ChunkCells {
     first: usize,
     last: usize,
     consecutive: bool,
-    count: usize,
+}
+
+/// How a chunk's lanes reach their cells' records (lanes past the columns
+/// are discarded, so a last, partial chunk reaches them as a whole one).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Reach {
+    /// Lane j at entry `first + j`: plain loads.
+    Consecutive,
+    /// All within one register from `first`: one permute per field.
+    Near,
+    /// Within two registers: two permutes and a blend.
+    Wide,
+    /// Further apart (uneven or descending steps): a gather.
+    Far,
+}
+
+impl ChunkCells {
+    #[inline(always)]
+    fn reach(&self, w: usize) -> Reach {
+        let spread = self.last - self.first + 1;
+        if self.consecutive {
+            Reach::Consecutive
+        } else if spread < w {
+            Reach::Near
+        } else if spread < 2 * w {
+            Reach::Wide
+        } else {
+            Reach::Far
+        }
+    }
 }
 
 fn chunk_cells(cells: &[i32]) -> ChunkCells {
     let (first, last) = cell_span(cells);
     // Branch-free, so it vectorises.
     let consecutive = cells.iter().enumerate().fold(true, |all, (j, &c)| all & (c as usize == first + j));
-    ChunkCells { first, last, consecutive, count: cells.len() }
+    ChunkCells { first, last, consecutive }
 }
 
 /// The smallest and largest of some cells.
@@ -529,10 +565,11 @@ impl<const D: usize> PointRows<D> {
                 .find(|&s| !self.key[s].is_some_and(|k| want[..rows].contains(&k)))
                 .expect("twice the slots a plane needs");
             let base = s * K::HASHED.total();
+            let mut row = self.records.entries_mut(base + K::HASHED.total(), 0, points.div_ceil(B::WIDTH) * B::WIDTH);
             let mut v = 0;
             while v < points {
                 let point = kind.point_row::<B>(min_cell.wrapping_add(v as i32), want[r]);
-                store_record(&mut self.records, base, v, &point, K::HASHED);
+                store_record(&mut row, base, v, &point, K::HASHED);
                 v += B::WIDTH;
             }
             self.key[s] = Some(want[r]);
@@ -608,6 +645,8 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
     let room = points + 3 * w;
+    // The points in whole lanes, as rows of them are hashed and bound.
+    let whole_lanes = points.div_ceil(w) * w;
     let rows = PointRows::<D>::PER_PLANE;
     let mut point_rows = PointRows::<D>::new(K::HASHED, room);
     // Each row's bound records, field-major: the fields a cell's corners read.
@@ -636,6 +675,18 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     }
     // Each aligned chunk of columns' cells, for the per-lane path.
     let span_of: Vec<ChunkCells> = if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(chunk_cells).collect() };
+    // Whole rows whose chunks all reach their cells one way (a regular
+    // grid finer than its lanes: one cell per column, or a few) run a loop
+    // that knows it, with their positions and fades stored by chunk.
+    let reach = span_of.iter().map(|c| Some(c.reach(w))).reduce(|a, b| if a == b { a } else { None }).flatten();
+    if !long_runs {
+        for s in (0..cols).step_by(w) {
+            let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
+            a.x[..w].copy_from_slice(&frac0[s..s + w]);
+            a.fade[..w].copy_from_slice(&fade0[s..s + w]);
+            chunk_axis.push(a);
+        }
+    }
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     let mut band = Band { columns: (0, 0), rows: Vec::new() };
@@ -662,10 +713,12 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         for (r, &slot) in slot_of.iter().enumerate().take(if new_plane || !by_plane { rows } else { 0 }) {
             let (from, to) = (slot * K::HASHED.total(), r * K::BOUND.total());
             let offset = offsets(fs, 2 * r);
+            let hashed = point_rows.records.entries(from + K::HASHED.total(), 0, whole_lanes);
+            let mut row = bound.entries_mut(to + K::BOUND.total(), 0, whole_lanes);
             let mut v = 0;
             while v < points {
-                let point = Block::new::<B>(&point_rows.records, v, from + K::HASHED.total()).record(from, 0, K::HASHED);
-                store_record(&mut bound, to, v, &kind.bind(point, offset), K::BOUND);
+                let point = At { entries: &hashed, at: v }.record(from, 0, K::HASHED);
+                store_record(&mut row, to, v, &kind.bind(point, offset), K::BOUND);
                 v += w;
             }
         }
@@ -755,30 +808,45 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             }
             // Short runs (fast fills are exact here): lanes read their own cells.
             (false, _) => {
-                let mut s = a0;
-                while s < a1 {
-                    // The chunk's cells (lanes past the columns are discarded).
-                    let cells = if s % w == 0 { span_of[s / w] } else { chunk_cells(&cell0[s..(s + w).min(cols)]) };
-                    let (first, last) = (cells.first, cells.last);
-                    // Corners read a cell's entry and the next one.
-                    let v = if cells.consecutive && cells.count == w {
-                        // Lane j in cell first + j: plain loads, no permutes.
-                        row.exact(kind, s, &Block::new::<B>(records, first, bound_fields))
-                    } else if last - first + 1 < 2 * w {
-                        let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
-                        let lane = [lane, lane.add_c(1)];
-                        if last - first + 1 < w {
-                            row.exact(kind, s, &PerLane::<B, true>::new(records, first, bound_fields, lane))
-                        } else {
-                            row.exact(kind, s, &PerLane::<B, false>::new(records, first, bound_fields, lane))
+                // Corners read a cell's entry and the next one.
+                let view = records.entries(bound_fields, 0, records.stride());
+                match reach {
+                    Some(Reach::Consecutive) if whole => {
+                        for (k, (cells, axis)) in span_of.iter().zip(&chunk_axis).enumerate() {
+                            let (x, fade) = axis.lanes::<B>();
+                            let v = row.exact_at(kind, x, fade, &At { entries: &view, at: cells.first });
+                            emit(v, &mut out[o0 + k * w..]);
                         }
-                    } else {
-                        // Far-apart cells (uneven or descending steps): one by one.
-                        let at = B::load_int(&cell0[s..]);
-                        row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] })
-                    };
-                    emit(v, &mut out[o0 + s - a0..]);
-                    s += w;
+                    }
+                    Some(Reach::Near) if whole => {
+                        for (k, (cells, axis)) in span_of.iter().zip(&chunk_axis).enumerate() {
+                            let (x, fade) = axis.lanes::<B>();
+                            let lane = B::load_int(&cell0[k * w..]).sub(B::Int::splat(cells.first as i32));
+                            let rec = PerLane::<B, true> { entries: &view, first: cells.first, lane: [lane, lane.add_c(1)] };
+                            emit(row.exact_at(kind, x, fade, &rec), &mut out[o0 + k * w..]);
+                        }
+                    }
+                    _ => {
+                        let mut s = a0;
+                        while s < a1 {
+                            // The chunk's cells (lanes past the columns are discarded).
+                            let cells = if s % w == 0 { span_of[s / w] } else { chunk_cells(&cell0[s..(s + w).min(cols)]) };
+                            let first = cells.first;
+                            let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
+                            let lane = [lane, lane.add_c(1)];
+                            let v = match cells.reach(w) {
+                                Reach::Consecutive => row.exact(kind, s, &At { entries: &view, at: first }),
+                                Reach::Near => row.exact(kind, s, &PerLane::<B, true> { entries: &view, first, lane }),
+                                Reach::Wide => row.exact(kind, s, &PerLane::<B, false> { entries: &view, first, lane }),
+                                Reach::Far => {
+                                    let at = B::load_int(&cell0[s..]);
+                                    row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] })
+                                }
+                            };
+                            emit(v, &mut out[o0 + s - a0..]);
+                            s += w;
+                        }
+                    }
                 }
             }
         }

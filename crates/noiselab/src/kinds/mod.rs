@@ -161,6 +161,15 @@ impl Columns {
         assert!(fields <= self.fields && width <= self.stride && first <= self.stride - width);
         Entries { from: &self.data[first..], stride: self.stride, fields, width }
     }
+
+    /// [`Columns::entries`], to write: a row of records stored a lane at a
+    /// time keeps its pointer and stride in registers and checks each store
+    /// once, where [`Columns::store`] reloads and checks twice.
+    #[inline(always)]
+    pub(crate) fn entries_mut(&mut self, fields: usize, first: usize, width: usize) -> EntriesMut<'_> {
+        assert!(fields <= self.fields && width <= self.stride && first <= self.stride - width);
+        EntriesMut { from: &mut self.data[first..], stride: self.stride, fields, width }
+    }
 }
 
 /// Some entries of a [`Columns`], bounds-checked as a whole.
@@ -190,6 +199,24 @@ impl Entries<'_> {
         assert!(field < self.fields && B::WIDTH <= self.width && at <= self.width - B::WIDTH);
         // SAFETY: as in `get`, with `at + WIDTH − 1 < width` the last entry.
         B::from_slice(unsafe { core::slice::from_raw_parts(self.from.as_ptr().add(field * self.stride + at), B::WIDTH) })
+    }
+}
+
+/// Some entries of a [`Columns`] to write, bounds-checked as a whole.
+pub(crate) struct EntriesMut<'a> {
+    from: &'a mut [f32],
+    stride: usize,
+    fields: usize,
+    width: usize,
+}
+
+impl EntriesMut<'_> {
+    /// Store `v` as field `field` of the entries `at..at + WIDTH` past the first.
+    #[inline(always)]
+    pub(crate) fn store<B: BatchLanes>(&mut self, field: usize, at: usize, v: B) {
+        assert!(field < self.fields && B::WIDTH <= self.width && at <= self.width - B::WIDTH);
+        // SAFETY: as in `Entries::load`.
+        v.store(unsafe { core::slice::from_raw_parts_mut(self.from.as_mut_ptr().add(field * self.stride + at), B::WIDTH) });
     }
 }
 
