@@ -832,16 +832,14 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                             // The chunk's cells (lanes past the columns are discarded).
                             let cells = if s % w == 0 { span_of[s / w] } else { chunk_cells(&cell0[s..(s + w).min(cols)]) };
                             let first = cells.first;
-                            let lane = B::load_int(&cell0[s..]).sub(B::Int::splat(first as i32));
+                            let at = B::load_int(&cell0[s..]);
+                            let lane = at.sub(B::Int::splat(first as i32));
                             let lane = [lane, lane.add_c(1)];
                             let v = match cells.reach(w) {
                                 Reach::Consecutive => row.exact(kind, s, &At { entries: &view, at: first }),
                                 Reach::Near => row.exact(kind, s, &PerLane::<B, true> { entries: &view, first, lane }),
                                 Reach::Wide => row.exact(kind, s, &PerLane::<B, false> { entries: &view, first, lane }),
-                                Reach::Far => {
-                                    let at = B::load_int(&cell0[s..]);
-                                    row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] })
-                                }
+                                Reach::Far => row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] }),
                             };
                             emit(v, &mut out[o0 + s - a0..]);
                             s += w;
