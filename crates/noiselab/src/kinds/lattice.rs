@@ -324,25 +324,6 @@ trait Source<B: BatchLanes> {
     }
 }
 
-/// Consecutive entries from `first`, one per lane (and the next), of the
-/// first `fields` fields, bounds-checked once: per field and entry the
-/// checks were a third of the instructions of a chunk at grid step 1.
-struct Block<'a>(Entries<'a>);
-
-impl<'a> Block<'a> {
-    #[inline(always)]
-    fn new<B: BatchLanes>(columns: &'a Columns, first: usize, fields: usize) -> Self {
-        Block(columns.entries(fields, first, B::WIDTH + 1))
-    }
-}
-
-impl<B: BatchLanes> Source<B> for Block<'_> {
-    #[inline(always)]
-    fn field(&self, k: usize, next: usize) -> B {
-        self.0.load(k, next)
-    }
-}
-
 /// Lanes at consecutive entries from `at` of a view checked once for a
 /// whole row of them.
 struct At<'a> {
@@ -752,9 +733,11 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                     *pw = *pw * if corner_bit(k, d - 1) == 1 { s } else { B::cst(1.0) - s };
                 }
             }
+            // Cells k.. read their entries and the next, within the table.
+            let view = bound.entries(bound_fields, 0, bound.stride());
             let mut k = 0;
             while k < ncell {
-                let cells = Block::new::<B>(&bound, k, bound_fields);
+                let cells = At { entries: &view, at: k };
                 for (m, v) in polynomial(kind, &cells, &pair_weights).into_iter().enumerate() {
                     coef.store(m, k, v);
                 }
