@@ -403,10 +403,11 @@ fn run_count(cells: &[i32]) -> usize {
     1 + cells.windows(2).map(|pair| usize::from(pair[0] != pair[1])).sum::<usize>()
 }
 
-/// Runs of equal cells among columns, as (start, end, cell − `min_cell`);
-/// whole lanes of one cell are passed over at once.
-fn cell_runs(cells: &[i32], min_cell: i32, w: usize) -> Vec<(usize, usize, usize)> {
-    let mut runs = Vec::new();
+/// Runs of equal cells among columns (`count` of them, from [`run_count`]),
+/// as (start, end, cell − `min_cell`); whole lanes of one cell are passed
+/// over at once.
+fn cell_runs(cells: &[i32], min_cell: i32, w: usize, count: usize) -> Vec<(usize, usize, usize)> {
+    let mut runs = Vec::with_capacity(count);
     let mut start = 0;
     while start < cells.len() {
         let cell = cells[start];
@@ -608,7 +609,8 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     }
     // Splat a cell's record over whole lanes when runs of columns in one
     // cell fill them; permute per lane when they are short.
-    let long_runs = cols >= run_count(&cell0[..cols]) * w;
+    let run_total = run_count(&cell0[..cols]);
+    let long_runs = cols >= run_total * w;
     // Flat kinds blend along axis 0 once per plane of cells where planes
     // hold several rows: each row then only finishes the blend (in 2D, one
     // multiply and one add per point). Exact, so fast fills take it too.
@@ -622,7 +624,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     // exact evaluation it saves, so the fill is exact there.
     let fast = span.accuracy == Accuracy::Fast && long_runs && !by_plane;
     // Runs of columns in one cell, as (start, end, cell), where they are used.
-    let runs = if long_runs { cell_runs(&cell0[..cols], min_cell, w) } else { Vec::new() };
+    let runs = if long_runs { cell_runs(&cell0[..cols], min_cell, w, run_total) } else { Vec::new() };
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
     let room = points + 3 * w;
@@ -637,8 +639,11 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     let mut coef = Columns::new(if fast { 4 } else { 0 }, room);
     // By plane: the plane's blends along axis 0, by column.
     let mut blends = Columns::new(if by_plane { rows } else { 0 }, padded);
-    let mut chunks: Vec<Chunk> = Vec::new();
-    let mut chunk_axis: Vec<ChunkAxis> = Vec::new();
+    // Sized up front: a small grid (a 32² tile) made three of its eight
+    // allocations growing these.
+    let chunk_total = cols.div_ceil(w) + runs.len();
+    let mut chunks: Vec<Chunk> = Vec::with_capacity(if long_runs { chunk_total } else { 0 });
+    let mut chunk_axis: Vec<ChunkAxis> = Vec::with_capacity(chunk_total);
     if long_runs {
         for &(start, end, cell) in &runs {
             for s in (start..end).step_by(w) {
