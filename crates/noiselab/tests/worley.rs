@@ -161,4 +161,8 @@ fn grid_fill_equals_the_point_path() {
     let tiled = Worley::new(5).with_period([3, 4, 0, 0]).unwrap().with_jitter(0.8).unwrap();
     grid_equals_points(&tiled, &Grid::new([-5.0, -5.0], [1.0 / 16.0; 2], [200, 40]));
     grid_equals_points(&Worley::new(9), &Grid::new([1e8, -2e9], [1.0, 1.0], [40, 3]));
+    // Rows whose coordinates along axes 1.. are not finite (NaN, as the
+    // point path gives) beside finite ones.
+    grid_equals_points(&Worley::new(4), &Grid::new([0.3, f64::NAN], [1.0 / 32.0, 0.1], [40, 3]));
+    grid_equals_points(&Worley::new(4), &Grid::new([0.3, 1.0, -2.0], [1.0 / 32.0, f64::MAX, 0.5], [40, 3, 2]));
 }

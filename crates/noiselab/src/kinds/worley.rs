@@ -6,7 +6,7 @@ use core::fmt;
 
 use alloc::vec::Vec;
 
-use super::{cell_range, Columns, Entries, Period, PeriodError};
+use super::{cell_range, Columns, Period, PeriodError};
 use crate::grid::{fill_pointwise, fill_span_at, row_lanes, store_prefix, RowPiece, Span};
 use crate::hash::{fmix32, hash_cell};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
@@ -346,11 +346,13 @@ impl Worley {
 
     /// The grid fill. Rows share their cells along axes 1.., so each
     /// row's feature points (displacements and ids of the 3^(D−1) rows of
-    /// cells around it) are computed once per row of cells; each chunk of
-    /// points then only permutes them into lanes and measures. The
-    /// candidates and every decision are `search`'s, in its order, so the
-    /// bits are the point path's. Falls back to it where a row's cells are
-    /// sparse, a chunk spans too many cells, or a point needs ring 2.
+    /// cells around it) are computed once per row of cells; rows share
+    /// their columns, so each column's place in its cell, and each chunk's
+    /// way to its cells, are computed once per span. Each chunk then only
+    /// broadcasts or permutes feature points into lanes and measures. The
+    /// candidates and every decision are `search`'s, so the bits are the
+    /// point path's. Falls back to it where a row's cells are sparse, a
+    /// chunk spans too many cells, or a point needs ring 2.
     #[inline(always)]
     fn fill_span_grid<B: BatchLanes, const D: usize>(&self, span: Span<'_, D>, out: &mut [f32])
     where
@@ -373,6 +375,9 @@ impl Worley {
         if ncell > 2 * (hi - lo) + 64 {
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
+        let along = self.columns_along::<B>(&xs[lo..hi]);
+        let mut plan = ChunkPlan { first: usize::MAX, reach: Vec::new(), one_cell: false };
+        let mut redo = Vec::with_capacity((hi - lo).div_ceil(w));
         // The feature points of cells min_cell − 1 ..= max_cell + 1 (column
         // c is cell min_cell − 1 + c) in each row of cells around the grid
         // row, laid out by `Features`.
@@ -380,11 +385,22 @@ impl Worley {
         let stride = ncell + 2 + 2 * w;
         let mut features = Columns::new(rows * Features::<D>::PER_ROW, stride);
         let mut plane: Option<[i32; D]> = None;
+        // Column-major copies for chunks in one cell (columns as in
+        // `features`, the last two only read).
+        let mut plane_table = Columns::new(ncell + 2, Interleaved::<D>::PLANE);
+        let mut row_table = Columns::new(ncell + 2, Interleaved::<D>::ROW.max(1));
+        let mut tables_plane = None;
 
         for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
             let mut p = [B::splat(0.0); D];
             for a in 1..D {
                 p[a] = B::splat(span.axes.axis(a)[idx[a]]);
+            }
+            let row_out = &mut out[o0..o0 + n];
+            if !(1..D).all(|a| p[a].lane(0).is_finite()) {
+                // NaN everywhere in the row (the point path's answer).
+                self.row_by_points::<B, D>(p, xs, i0, row_out);
+                continue;
             }
             let (row_base, row_frac, _) = Self::split(p);
             let mut row_cell = [0i32; D];
@@ -414,7 +430,10 @@ impl Worley {
                 }
                 plane = Some(row_cell);
             }
-            // The row's terms along axes 1.. of every candidate.
+            // The row's terms along axes 1.. of every candidate, and its
+            // part of `split`'s edge (the smaller of the row's and the
+            // column's: `min` is exact and commutes).
+            let mut edge = B::cst(1.0);
             for j in 0..rows {
                 for a in 1..D {
                     let (from, to) = (Features::<D>::jitter(j, a), Features::<D>::term(j, a));
@@ -426,8 +445,31 @@ impl Worley {
                     }
                 }
             }
-            let row = RowFeatures { p, xs, cells: &cells, lo, min_cell, features: &features };
-            let row_out = &mut out[o0..o0 + n];
+            for &f in &row_frac[1..] {
+                edge = edge.min(f).min(B::cst(1.0) - f);
+            }
+            if plan.first != i0 {
+                plan = ChunkPlan::new::<B>(&cells, lo, i0, min_cell);
+            }
+            if plan.one_cell {
+                if tables_plane != plane {
+                    Interleaved::<D>::gather_plane(&mut plane_table, &features);
+                    tables_plane = plane;
+                }
+                Interleaved::<D>::gather_row(&mut row_table, &features);
+            }
+            let row = RowFeatures {
+                p,
+                xs,
+                lo,
+                edge,
+                ring2: self.ring_bound(2, edge),
+                along: &along,
+                plan: &plan.reach,
+                features: &features,
+                plane_table: &plane_table,
+                row_table: &row_table,
+            };
             // The seed's searches (F1 and F2, Euclidean and Manhattan; up to
             // 3D) with their metric and output as constants, so that the
             // formulas and the count of kept distances fold into the chunk
@@ -435,23 +477,48 @@ impl Worley {
             // slower. Each arm is another copy of the loop (13-17 s more to
             // build a test that fills Worley grids), so the rest share one.
             match (self.metric, self.output) {
-                _ if D > 3 => self.row_points::<B, D>(&row, i0, row_out),
+                _ if D > 3 => self.row_points::<B, D>(&row, i0, row_out, &mut redo),
                 (Metric::Euclidean, CellOutput::F1) => {
-                    self.fixed(Metric::Euclidean, CellOutput::F1).row_points::<B, D>(&row, i0, row_out)
+                    self.fixed(Metric::Euclidean, CellOutput::F1).row_points::<B, D>(&row, i0, row_out, &mut redo)
                 }
                 (Metric::Euclidean, CellOutput::F2) => {
-                    self.fixed(Metric::Euclidean, CellOutput::F2).row_points::<B, D>(&row, i0, row_out)
+                    self.fixed(Metric::Euclidean, CellOutput::F2).row_points::<B, D>(&row, i0, row_out, &mut redo)
                 }
                 (Metric::Manhattan, CellOutput::F1) => {
-                    self.fixed(Metric::Manhattan, CellOutput::F1).row_points::<B, D>(&row, i0, row_out)
+                    self.fixed(Metric::Manhattan, CellOutput::F1).row_points::<B, D>(&row, i0, row_out, &mut redo)
                 }
                 (Metric::Manhattan, CellOutput::F2) => {
-                    self.fixed(Metric::Manhattan, CellOutput::F2).row_points::<B, D>(&row, i0, row_out)
+                    self.fixed(Metric::Manhattan, CellOutput::F2).row_points::<B, D>(&row, i0, row_out, &mut redo)
                 }
-                _ => self.row_points::<B, D>(&row, i0, row_out),
+                _ => self.row_points::<B, D>(&row, i0, row_out, &mut redo),
             }
         }
         features.recycle();
+        plane_table.recycle();
+        row_table.recycle();
+        along.recycle();
+    }
+
+    /// For grid columns at `xs`: each one's position in its cell
+    /// ([`COLUMN_FRAC`]) and distance to its cell's nearer face along
+    /// axis 0 ([`COLUMN_EDGE`]), as `split` computes them, and that
+    /// distance's `ring_bound(2, ·)` ([`COLUMN_RING2`]); padded by a chunk
+    /// that repeats the last.
+    #[inline(always)]
+    fn columns_along<B: BatchLanes>(&self, xs: &[f32]) -> Columns {
+        let n = xs.len();
+        let mut along = Columns::new(3, n + B::WIDTH);
+        let mut c = 0;
+        while c < n {
+            let x = row_lanes::<B>(xs, c, (n - c).min(B::WIDTH));
+            let frac = x - x.floor();
+            let edge = B::cst(1.0).min(frac).min(B::cst(1.0) - frac);
+            along.store(COLUMN_FRAC, c, frac);
+            along.store(COLUMN_EDGE, c, edge);
+            along.store(COLUMN_RING2, c, self.ring_bound(2, edge));
+            c += B::WIDTH;
+        }
+        along
     }
 
     /// This noise with `metric` and `output` (given as constants by the
@@ -461,36 +528,100 @@ impl Worley {
         Worley { metric, output, ..*self }
     }
 
-    /// A grid row's points from column `i0` on, into `out`, a chunk at a
-    /// time (or by `search` where a chunk spans too many cells or needs
-    /// ring 2).
+    /// A grid row's points from column `i0` on, into `out`, a run of
+    /// chunks at a time as the span's [`ChunkPlan`] says.
     #[inline(always)]
-    fn row_points<B: BatchLanes, const D: usize>(&self, row: &RowFeatures<'_, B, D>, i0: usize, out: &mut [f32])
+    fn row_points<B: BatchLanes, const D: usize>(
+        &self,
+        row: &RowFeatures<'_, B, D>,
+        i0: usize,
+        out: &mut [f32],
+        redo: &mut Vec<usize>,
+    )
     where
         Worley: Noise<D>,
     {
         let w = B::WIDTH;
-        let rows = 3usize.pow(D as u32 - 1);
-        let mut p = row.p;
+        let n = out.len();
+        let mut k = 0;
+        for &(reach, chunks) in row.plan {
+            if k >= n {
+                break;
+            }
+            let end = n.min(k + chunks * w);
+            let run = &mut out[k..end];
+            match reach {
+                Reach::OneCell(cell) => {
+                    let near = OneCell::<D> {
+                        plane: &row.plane_table.field(cell, 0)[..3 * Interleaved::<D>::PLANE],
+                        row: &row.row_table.field(cell, 0)[..3 * Interleaved::<D>::ROW],
+                    };
+                    self.run::<B, D>(row, i0 + k, &near, run, redo, k)
+                }
+                Reach::TwoRegisters { first, origin } => {
+                    self.run::<B, D>(row, i0 + k, &Window { features: row.features, first, origin }, run, redo, k)
+                }
+                Reach::Search => self.row_by_points::<B, D>(row.p, row.xs, i0 + k, run),
+            }
+            k = end;
+        }
+        // The chunks that need ring 2, by the point path: out of the loop
+        // above, whose registers then hold the run's feature points.
+        for &k in redo.iter() {
+            let count = (n - k).min(w);
+            self.row_by_points::<B, D>(row.p, row.xs, i0 + k, &mut out[k..k + count]);
+        }
+        redo.clear();
+    }
+
+    /// Chunks of a grid row from column `i` on whose lanes find their
+    /// cells' feature points in `near`, into `out`; those that need ring 2
+    /// are left to the caller, their offsets from the row piece's start
+    /// (`out` starting `from` into it) pushed onto `redo`.
+    #[inline(always)]
+    fn run<B: BatchLanes, const D: usize>(
+        &self,
+        row: &RowFeatures<'_, B, D>,
+        i: usize,
+        near: &impl Near<B, D>,
+        out: &mut [f32],
+        redo: &mut Vec<usize>,
+        from: usize,
+    ) where
+        Worley: Noise<D>,
+    {
         let n = out.len();
         let mut k = 0;
         while k < n {
-            let count = (n - k).min(w);
-            let i = i0 + k;
-            p[0] = row_lanes(row.xs, i, count);
-            let (a, b) = cell_range(&row.cells[i - row.lo..i - row.lo + count]);
-            let window = Window { features: row.features, first: (a - row.min_cell) as usize, origin: a - 1 };
-            let v = if a == b {
-                // One cell: every lane reads the same feature points.
-                self.chunk_k::<B, D>(p, &OneCell::new(window, rows * Features::<D>::PER_ROW))
-            } else if ((b - a) as usize) + 3 <= 2 * w {
-                // Columns a − 1 ..= b + 1 fit two registers.
-                self.chunk_k::<B, D>(p, &window)
-            } else {
-                None
-            };
-            let v = v.unwrap_or_else(|| self.sample(p));
-            store_prefix(v, &mut out[k..k + count]);
+            let count = (n - k).min(B::WIDTH);
+            // One check for the column's three fields.
+            let column = row.along.entries(3, i + k - row.lo, B::WIDTH);
+            let frac0 = column.load::<B>(COLUMN_FRAC, 0);
+            // `split`'s edge is the smaller of the column's and the row's
+            // (`min` is exact and commutes), and `ring_bound` is monotone
+            // in it (rounding is), so its bound is the smaller bound.
+            let edge = column.load::<B>(COLUMN_EDGE, 0).min(row.edge);
+            let ring2 = column.load::<B>(COLUMN_RING2, 0).min(row.ring2);
+            match self.chunk_k::<B, D>(frac0, edge, ring2, &near.columns(row.xs, i + k, count), near) {
+                Some(v) => store_prefix(v, &mut out[k..k + count]),
+                None => redo.push(from + k),
+            }
+            k += count;
+        }
+    }
+
+    /// A grid row (whose coordinates along axes 1.. are in `p`) by the
+    /// point path.
+    #[inline(always)]
+    fn row_by_points<B: BatchLanes, const D: usize>(&self, mut p: [B; D], xs: &[f32], i0: usize, out: &mut [f32])
+    where
+        Worley: Noise<D>,
+    {
+        let mut k = 0;
+        while k < out.len() {
+            let count = (out.len() - k).min(B::WIDTH);
+            p[0] = row_lanes(xs, i0 + k, count);
+            store_prefix(self.sample(p), &mut out[k..k + count]);
             k += count;
         }
     }
@@ -498,61 +629,83 @@ impl Worley {
     /// [`Worley::chunk`] keeping as many distances as the output needs,
     /// and the ids only where it reads them.
     #[inline(always)]
-    fn chunk_k<B: BatchLanes, const D: usize>(&self, p: [B; D], near: &impl Near) -> Option<B> {
+    fn chunk_k<B: BatchLanes, const D: usize>(
+        &self,
+        frac0: B,
+        edge: B,
+        ring2: B,
+        columns: &[B::Int; 3],
+        near: &impl Near<B, D>,
+    ) -> Option<B> {
         // k a constant where it is 1 (the common case): the nearest then
         // lives in a register.
         match (self.output.needs(), self.output == CellOutput::CellValue) {
-            (1, false) => self.chunk::<B, D, false>(p, near, 1),
-            (1, true) => self.chunk::<B, D, true>(p, near, 1),
-            (k, _) => self.chunk::<B, D, false>(p, near, k),
+            (1, false) => self.chunk::<B, D, false>(frac0, edge, ring2, columns, near, 1),
+            (1, true) => self.chunk::<B, D, true>(frac0, edge, ring2, columns, near, 1),
+            (k, _) => self.chunk::<B, D, false>(frac0, edge, ring2, columns, near, k),
         }
     }
 
-    /// One chunk from a row's feature points: `search` over rings 0 and 1
-    /// (the same candidates in the same order), or `None` where some lane
-    /// needs ring 2. `k` is the number of distances kept; `IDS` whether
-    /// the cells' ids are (positions never are).
+    /// One chunk of a finite grid row from its feature points: `search`
+    /// over rings 0 and 1 (the same candidates in the same order), or
+    /// `None` where some lane needs ring 2. The lanes are at `frac0` in
+    /// their cells along axis 0 and `edge` from their cells' nearest faces
+    /// (as `split` gives them; `ring2` is `ring_bound(2, edge)`), and
+    /// `columns` are the window columns of the cells −1, 0 and +1 from
+    /// theirs. `k` is the number of distances kept; `IDS` whether the
+    /// cells' ids are (positions never are).
+    ///
+    /// `search` stops after ring 0 where that ring's cell is nearer than
+    /// ring 1's bound; this does not ask, since ring 1 then changes
+    /// nothing (its keys are at least that bound: rounding is monotone
+    /// and a key only adds non-negative terms or takes their largest) and
+    /// the question only pays in the few chunks where every lane passes.
+    /// Minkowski keys go through `powf`, which is not known to be
+    /// monotone, so they still ask.
     #[inline(always)]
-    fn chunk<B: BatchLanes, const D: usize, const IDS: bool>(&self, p: [B; D], near: &impl Near, k: usize) -> Option<B> {
-        let (base, frac, edge) = Self::split(p);
-        let column = base[0].sub(B::Int::splat(near.origin()));
-        let columns = [column.add_c(-1), column, column.add_c(1)];
+    fn chunk<B: BatchLanes, const D: usize, const IDS: bool>(
+        &self,
+        frac0: B,
+        edge: B,
+        ring2: B,
+        columns: &[B::Int; 3],
+        near: &impl Near<B, D>,
+        k: usize,
+    ) -> Option<B> {
         let planes = 3usize.pow(D as u32 - 1);
         let centre = planes / 2;
         let nowhere = [B::cst(0.0); D];
         let mut found = Found::new();
         // Ring 0: the middle of the centre row of three.
-        let mid = self.row_of_three::<B, D, IDS>(frac[0], &columns, centre, near);
+        let mid = self.row_of_three::<B, D, IDS>(frac0, columns, centre, near);
         found.insert(mid.keys[1], mid.ids[1], nowhere, k);
-        if !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
-            return Some(super::finite_or_nan(p, self.output(&found)));
+        if matches!(self.metric, Metric::Minkowski(_)) && !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
+            return Some(self.output(&found));
         }
         // Ring 1: every row of three, the centre row's middle left out.
         for j in 0..planes {
-            let mut row = if j == centre { mid } else { self.row_of_three::<B, D, IDS>(frac[0], &columns, j, near) };
-            if j == centre {
-                row.keys[1] = B::cst(f64::INFINITY);
-            }
+            let row = if j == centre { mid } else { self.row_of_three::<B, D, IDS>(frac0, columns, j, near) };
+            let ring1 = |c: usize| j != centre || c != 1;
             if k == 1 {
                 // The row's nearest first (ties to the earlier, as
                 // insertion keeps them): one dependent insertion per row.
                 let (mut key, mut id) = (row.keys[0], row.ids[0]);
-                for c in 1..3 {
+                for c in (1..3).filter(|&c| ring1(c)) {
                     let closer = row.keys[c].lt(key);
                     key = key.min(row.keys[c]);
                     id = B::Int::select(closer, row.ids[c], id);
                 }
                 found.insert(key, id, nowhere, k);
             } else {
-                for c in 0..3 {
+                for c in (0..3).filter(|&c| ring1(c)) {
                     found.insert(row.keys[c], row.ids[c], nowhere, k);
                 }
             }
         }
-        if B::any(self.ring_bound(2, edge).lt(found.distance[k - 1])) {
+        if B::any(ring2.lt(found.distance[k - 1])) {
             return None;
         }
-        Some(super::finite_or_nan(p, self.output(&found)))
+        Some(self.output(&found))
     }
 
     /// The search keys (and, with `IDS`, ids) of cells −1, 0 and +1 along
@@ -565,18 +718,18 @@ impl Worley {
         frac0: B,
         columns: &[B::Int; 3],
         j: usize,
-        near: &impl Near,
+        near: &impl Near<B, D>,
     ) -> Three<B> {
         let mut d0 = [B::splat(0.0); 3];
         let mut rest = [[B::splat(0.0); D]; 3];
         let mut ids = [B::Int::splat(0); 3];
         for c in 0..3 {
-            d0[c] = near.lanes::<B>(Features::<D>::lead(j, c), c, columns[c]) - frac0;
+            d0[c] = near.lead(j, c, columns[c]) - frac0;
             for a in 1..D {
-                rest[c][a] = near.lanes::<B>(Features::<D>::term(j, a), c, columns[c]);
+                rest[c][a] = near.term(j, a, c, columns[c]);
             }
             if IDS {
-                ids[c] = near.lanes::<B>(Features::<D>::id(j), c, columns[c]).to_bits();
+                ids[c] = near.id(j, c, columns[c]);
             }
         }
         Three { keys: self.keys(d0, &rest), ids }
@@ -615,16 +768,79 @@ impl<const D: usize> Features<D> {
 }
 
 /// What a grid row's chunks read: the row's coordinates along axes 1..
-/// (`p[0]` unused), the grid's positions along axis 0 and, from column
-/// `lo`, their cells, and the feature points of the cells around the row
-/// (laid out by [`Features`], the first column cell `min_cell − 1`).
+/// (`p[0]` unused) and its part of their `edge` and `ring2` bound, the
+/// grid's positions along axis 0 and, from column `lo`, their
+/// [`Worley::columns_along`], the span's [`ChunkPlan`], and the feature
+/// points of the cells around the row (laid out by [`Features`], the first
+/// column cell `min_cell − 1`, and by [`Interleaved`]).
 struct RowFeatures<'a, B: BatchLanes, const D: usize> {
     p: [B; D],
+    edge: B,
+    ring2: B,
     xs: &'a [f32],
-    cells: &'a [i32],
     lo: usize,
-    min_cell: i32,
+    along: &'a Columns,
+    plan: &'a [(Reach, usize)],
     features: &'a Columns,
+    plane_table: &'a Columns,
+    row_table: &'a Columns,
+}
+
+/// [`Worley::columns_along`]'s fields.
+const COLUMN_FRAC: usize = 0;
+const COLUMN_EDGE: usize = 1;
+const COLUMN_RING2: usize = 2;
+
+/// Where a chunk's lanes find the feature points of the cells around
+/// them: `first` is the row's [`Features`] column of the cell before the
+/// chunk's first.
+#[derive(Clone, Copy, PartialEq)]
+enum Reach {
+    /// Every lane in one cell, `min_cell` + this.
+    OneCell(usize),
+    /// Cells `origin + 1 ..`, within two registers of columns from `first`.
+    TwoRegisters { first: usize, origin: i32 },
+    /// Too many cells: the point path.
+    Search,
+}
+
+/// The [`Reach`] of every chunk of a row whose pieces start at column
+/// `first` (the same in every such row: rows share their columns), in
+/// runs of consecutive chunks that reach the same way.
+struct ChunkPlan {
+    first: usize,
+    reach: Vec<(Reach, usize)>,
+    /// Whether some chunk is [`Reach::OneCell`].
+    one_cell: bool,
+}
+
+impl ChunkPlan {
+    /// The chunks from column `first` on of columns `lo..` in `cells`, the
+    /// first of which is `min_cell`. A piece that ends early reads a prefix
+    /// of its last chunk's plan, which holds for fewer lanes too.
+    fn new<B: BatchLanes>(cells: &[i32], lo: usize, first: usize, min_cell: i32) -> ChunkPlan {
+        let w = B::WIDTH;
+        let from = first - lo;
+        let mut reach = Vec::with_capacity((cells.len() - from).div_ceil(w));
+        let mut one_cell = false;
+        for chunk in cells[from..].chunks(w) {
+            let (a, b) = cell_range(chunk);
+            let first = (a - min_cell) as usize;
+            let this = if a == b {
+                one_cell = true;
+                Reach::OneCell(first)
+            } else if ((b - a) as usize) + 3 <= 2 * w {
+                Reach::TwoRegisters { first, origin: a - 1 }
+            } else {
+                Reach::Search
+            };
+            match reach.last_mut() {
+                Some((last, chunks)) if *last == this => *chunks += 1,
+                _ => reach.push((this, 1)),
+            }
+        }
+        ChunkPlan { first, reach, one_cell }
+    }
 }
 
 /// Three candidates' keys and ids.
@@ -685,13 +901,19 @@ fn digit(j: usize, d: usize) -> i32 {
     ((j / 3usize.pow(d as u32)) % 3) as i32 - 1
 }
 
-/// Where a chunk's lanes find the feature points of the cells around them.
-trait Near {
-    /// The cell of the window's column 0.
-    fn origin(&self) -> i32;
-    /// Field `field` of each lane's cell `c` − 1 along axis 0 (`column`:
-    /// that cell's column in the window).
-    fn lanes<B: BatchLanes>(&self, field: usize, c: usize, column: B::Int) -> B;
+/// Where a chunk's lanes find the feature points of the cells around
+/// them: in the row of cells `j` (base 3 over axes 1..), the cell `c − 1`
+/// along axis 0 from each lane's, whose column in the window is `column`.
+trait Near<B: BatchLanes, const D: usize> {
+    /// The window columns of the cells −1, 0 and +1 from the cells of
+    /// `count` grid columns from `i` (positions `xs`).
+    fn columns(&self, xs: &[f32], i: usize, count: usize) -> [B::Int; 3];
+    /// [`Features::lead`].
+    fn lead(&self, j: usize, c: usize, column: B::Int) -> B;
+    /// [`Features::term`] along axis `a` ≥ 1.
+    fn term(&self, j: usize, a: usize, c: usize, column: B::Int) -> B;
+    /// [`Features::id`].
+    fn id(&self, j: usize, c: usize, column: B::Int) -> B::Int;
 }
 
 /// A chunk's window on a row's feature points: columns `first..first +
@@ -702,42 +924,122 @@ struct Window<'a> {
     origin: i32,
 }
 
-impl Near for Window<'_> {
+impl Window<'_> {
+    /// Field `field` of the lanes' cells at `column`.
     #[inline(always)]
-    fn origin(&self) -> i32 {
-        self.origin
-    }
-    #[inline(always)]
-    fn lanes<B: BatchLanes>(&self, field: usize, _c: usize, column: B::Int) -> B {
+    fn lanes<B: BatchLanes>(&self, field: usize, column: B::Int) -> B {
         let v = self.features.field(field, self.first);
         B::permute2(B::from_slice(v), B::from_slice(&v[B::WIDTH..]), column)
     }
 }
 
-/// A window whose chunk lies in one cell (column 1 of the window): every
-/// lane reads the same feature points, the window's first three columns
-/// of its first `fields` fields, bounds-checked once.
-struct OneCell<'a> {
-    origin: i32,
-    columns: Entries<'a>,
-}
-
-impl<'a> OneCell<'a> {
-    /// The window's first `fields` fields.
+impl<B: BatchLanes, const D: usize> Near<B, D> for Window<'_> {
     #[inline(always)]
-    fn new(window: Window<'a>, fields: usize) -> Self {
-        OneCell { origin: window.origin, columns: window.features.entries(fields, window.first, 3) }
+    fn columns(&self, xs: &[f32], i: usize, count: usize) -> [B::Int; 3] {
+        let x = row_lanes::<B>(xs, i, count);
+        let column = x.floor().to_int_wrapping().sub(B::Int::splat(self.origin));
+        [column.add_c(-1), column, column.add_c(1)]
+    }
+    #[inline(always)]
+    fn lead(&self, j: usize, c: usize, column: B::Int) -> B {
+        self.lanes(Features::<D>::lead(j, c), column)
+    }
+    #[inline(always)]
+    fn term(&self, j: usize, a: usize, _c: usize, column: B::Int) -> B {
+        self.lanes(Features::<D>::term(j, a), column)
+    }
+    #[inline(always)]
+    fn id(&self, j: usize, _c: usize, column: B::Int) -> B::Int {
+        self.lanes::<B>(Features::<D>::id(j), column).to_bits()
     }
 }
 
-impl Near for OneCell<'_> {
+/// A chunk whose lanes lie in one cell: every lane reads the same
+/// feature points, from the [`Interleaved`] tables' three columns from the
+/// cell before the lanes' (each slice exactly three columns long, so the
+/// reads, at fixed offsets, need no checks).
+struct OneCell<'a, const D: usize> {
+    plane: &'a [f32],
+    row: &'a [f32],
+}
+
+impl<B: BatchLanes, const D: usize> Near<B, D> for OneCell<'_, D> {
     #[inline(always)]
-    fn origin(&self) -> i32 {
-        self.origin
+    fn columns(&self, _xs: &[f32], _i: usize, _count: usize) -> [B::Int; 3] {
+        [B::Int::splat(0); 3]
     }
     #[inline(always)]
-    fn lanes<B: BatchLanes>(&self, field: usize, c: usize, _column: B::Int) -> B {
-        B::splat(self.columns.get(field, c))
+    fn lead(&self, j: usize, c: usize, _column: B::Int) -> B {
+        B::splat(self.plane[Interleaved::<D>::lead(j, c)])
+    }
+    #[inline(always)]
+    fn term(&self, j: usize, a: usize, c: usize, _column: B::Int) -> B {
+        B::splat(self.row[Interleaved::<D>::term(j, a, c)])
+    }
+    #[inline(always)]
+    fn id(&self, j: usize, c: usize, _column: B::Int) -> B::Int {
+        B::splat(self.plane[Interleaved::<D>::id(j, c)]).to_bits()
+    }
+}
+
+/// The [`Features`] a grid chunk in one cell reads, column-major: what a
+/// plane's cells give (leads and ids) in one table, what a row's give
+/// (terms) in another, each column's values together (field `k` of a
+/// [`Columns`] is column `k`). A chunk then reads all of them at fixed
+/// offsets from two addresses; from the field-major features it needed
+/// an address per field, more than there are registers.
+struct Interleaved<const D: usize>;
+
+impl<const D: usize> Interleaved<D> {
+    /// Rows of cells around a grid row.
+    const ROWS: usize = 3usize.pow(D as u32 - 1);
+    /// Values per column in the plane's table.
+    const PLANE: usize = Self::ROWS * 4;
+    /// Values per column in the row's table.
+    const ROW: usize = Self::ROWS * (D - 1);
+
+    /// Where [`Features::lead`] of row of cells `j` and cell `c − 1` from
+    /// the chunk's is, from the column before the chunk's.
+    const fn lead(j: usize, c: usize) -> usize {
+        c * Self::PLANE + j * 3 + c
+    }
+
+    /// Where [`Features::id`] is, as [`Interleaved::lead`].
+    const fn id(j: usize, c: usize) -> usize {
+        c * Self::PLANE + Self::ROWS * 3 + j
+    }
+
+    /// Where [`Features::term`] along axis `a` ≥ 1 is, as
+    /// [`Interleaved::lead`], in the row's table.
+    const fn term(j: usize, a: usize, c: usize) -> usize {
+        c * Self::ROW + (a - 1) * Self::ROWS + j
+    }
+
+    /// The plane's table from its features.
+    #[inline(always)]
+    fn gather_plane(table: &mut Columns, features: &Columns) {
+        let columns = table.fields;
+        for (col, values) in table.data.chunks_exact_mut(Self::PLANE).enumerate().take(columns) {
+            for j in 0..Self::ROWS {
+                for o in 0..3 {
+                    values[j * 3 + o] = features.field(Features::<D>::lead(j, o), col)[0];
+                }
+                values[Self::ROWS * 3 + j] = features.field(Features::<D>::id(j), col)[0];
+            }
+        }
+    }
+
+    /// The row's table from its features.
+    #[inline(always)]
+    fn gather_row(table: &mut Columns, features: &Columns) {
+        let columns = table.fields;
+        for (col, values) in table.data.chunks_exact_mut(Self::ROW.max(1)).enumerate().take(columns) {
+            for a in 1..D {
+                for j in 0..Self::ROWS {
+                    values[(a - 1) * Self::ROWS + j] = features.field(Features::<D>::term(j, a), col)[0];
+                }
+            }
+        }
     }
 }
 
