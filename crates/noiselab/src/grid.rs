@@ -87,6 +87,19 @@ impl<const D: usize> Grid<D> {
         self.origin[d] + i as f64 * self.step[d]
     }
 
+    /// The `f32` coordinates along axis `d`: [`Grid::coord`] of each index,
+    /// rounded.
+    pub fn axis_coords(&self, d: usize) -> Vec<f32> {
+        let (origin, step) = (self.origin[d], self.step[d]);
+        // Counting in `i32` where it fits: its conversion to `f64` vectorises
+        // at the baseline instruction set, `usize`'s does not. Both are exact,
+        // so the coordinates are `coord`'s.
+        match i32::try_from(self.size[d]) {
+            Ok(n) => (0..n).map(|i| (origin + f64::from(i) * step) as f32).collect(),
+            Err(_) => (0..self.size[d]).map(|i| self.coord(d, i) as f32).collect(),
+        }
+    }
+
     /// The `f32` point at flat index `index` (axis 0 fastest): exactly the
     /// point the batch evaluates there.
     pub fn point(&self, mut index: usize) -> [f32; D] {
@@ -125,7 +138,7 @@ pub struct Axes<const D: usize> {
 impl<const D: usize> Axes<D> {
     /// The axes of `grid`.
     pub fn of(grid: &Grid<D>) -> Self {
-        Axes { coords: core::array::from_fn(|d| (0..grid.size[d]).map(|i| grid.coord(d, i) as f32).collect()) }
+        Axes { coords: core::array::from_fn(|d| grid.axis_coords(d)) }
     }
 
     /// Axes given coordinate by coordinate.

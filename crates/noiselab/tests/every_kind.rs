@@ -157,6 +157,14 @@ fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         // one (−1e-9 splits to the fraction 1.0 in f32): the corners whose
         // offsets are all zero give signed zeros.
         Grid::new(core::array::from_fn(|d| if d == 0 { 0.0 } else { -1e-9 }), [0.5; D], size(45, rest)),
+        // Whole rows in long runs, many of them: batches of rows, full and
+        // partial, cut where rows cross into the next plane of cells (and
+        // one row on the lattice line y = 0).
+        Grid::new([-0.5; D], [1.0 / 32.0; D], core::array::from_fn(|d| match d {
+            0 => 48,
+            1 => 37,
+            _ => 2,
+        })),
     ]
 }
 

@@ -97,8 +97,8 @@ impl Sparse {
             return Noise::<D>::fill_grid(self, grid, out).map_err(SplatError::Grid);
         }
 
-        let xs: Vec<f32> = (0..w).map(|i| grid.coord(0, i) as f32).collect();
-        let ys: Vec<f32> = (0..h).map(|j| grid.coord(1, j) as f32).collect();
+        let xs = grid.axis_coords(0);
+        let ys = grid.axis_coords(1);
         let mut slice = [0f32; D];
         for (d, s) in slice.iter_mut().enumerate().skip(2) {
             *s = grid.coord(d, 0) as f32;
