@@ -31,6 +31,7 @@
 use super::{corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, EntriesMut, MAX_CORNERS};
 use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
+use alloc::vec;
 use alloc::vec::Vec;
 
 /// How many float and integer fields of a [`Corner`] are in use.
@@ -396,51 +397,6 @@ impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     }
 }
 
-/// The lattice fill's working vectors for a span (columns' cells,
-/// positions and fades; runs of one cell; chunks), kept by the thread
-/// between fills: allocating and freeing them was a tenth of a 32² tile's
-/// time.
-#[derive(Default)]
-struct Workspace {
-    cell: Vec<i32>,
-    frac: Vec<f32>,
-    fade: Vec<f32>,
-    runs: Vec<(usize, usize, usize)>,
-    chunks: Vec<Chunk>,
-    axis: Vec<ChunkAxis>,
-    cells: Vec<ChunkCells>,
-}
-
-#[cfg(feature = "std")]
-std::thread_local! {
-    static WORKSPACE: core::cell::Cell<Workspace> = core::cell::Cell::new(Workspace::default());
-}
-
-impl Workspace {
-    /// The thread's workspace (a fresh one for a fill nested in another,
-    /// or without `std`).
-    fn take() -> Self {
-        #[cfg(feature = "std")]
-        return WORKSPACE.with(|w| w.take());
-        #[cfg(not(feature = "std"))]
-        Workspace::default()
-    }
-
-    /// Keep the vectors for the thread's next fill.
-    fn give_back(self) {
-        #[cfg(feature = "std")]
-        WORKSPACE.with(|w| w.set(self));
-    }
-}
-
-/// At least `len` entries (their values left from earlier use: every
-/// entry read is written first).
-fn at_least<T: Copy + Default>(v: &mut Vec<T>, len: usize) {
-    if v.len() < len {
-        v.resize(len, T::default());
-    }
-}
-
 /// How many runs of equal cells the columns have.
 fn run_count(cells: &[i32]) -> usize {
     // Branch-free, so it vectorises.
@@ -450,8 +406,8 @@ fn run_count(cells: &[i32]) -> usize {
 /// Runs of equal cells among columns (`count` of them, from [`run_count`]),
 /// as (start, end, cell − `min_cell`); whole lanes of one cell are passed
 /// over at once.
-fn cell_runs(cells: &[i32], min_cell: i32, w: usize, runs: &mut Vec<(usize, usize, usize)>) {
-    runs.clear();
+fn cell_runs(cells: &[i32], min_cell: i32, w: usize, count: usize) -> Vec<(usize, usize, usize)> {
+    let mut runs = Vec::with_capacity(count);
     let mut start = 0;
     while start < cells.len() {
         let cell = cells[start];
@@ -466,6 +422,7 @@ fn cell_runs(cells: &[i32], min_cell: i32, w: usize, runs: &mut Vec<(usize, usiz
         runs.push((start, end, (cell as i64 - min_cell as i64) as usize));
         start = end;
     }
+    runs
 }
 
 /// A chunk of columns' cells: the smallest and largest, and whether they are
@@ -614,20 +571,6 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     span: Span<'_, D>,
     out: &mut [f32],
 ) {
-    let mut workspace = Workspace::take();
-    fill_span_in::<K, B, D>(kind, span, out, &mut workspace);
-    workspace.give_back();
-}
-
-/// [`fill_span`] with its working vectors.
-#[inline(always)]
-fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
-    kind: &K,
-    span: Span<'_, D>,
-    out: &mut [f32],
-    workspace: &mut Workspace,
-) {
-    let Workspace { cell: cell0, frac: frac0, fade: fade0, runs, chunks, axis: chunk_axis, cells: span_of } = workspace;
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
     let nx = xs.len();
@@ -640,9 +583,7 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
     // Axis 0 once per span: cell, position and fade of each column.
     let cols = hi - lo;
     let padded = cols.div_ceil(w) * w + w;
-    at_least(cell0, padded);
-    at_least(frac0, padded);
-    at_least(fade0, padded);
+    let (mut cell0, mut frac0, mut fade0) = (vec![0i32; padded], vec![0f32; padded], vec![0f32; padded]);
     let mut k = 0;
     while k < cols {
         let x = if k + w <= cols {
@@ -697,10 +638,7 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
         && span.start.is_multiple_of(nx)
         && out.len().is_multiple_of(nx);
     // Runs of columns in one cell, as (start, end, cell), where they are used.
-    runs.clear();
-    if long_runs {
-        cell_runs(&cell0[..cols], min_cell, w, runs);
-    }
+    let runs = if long_runs { cell_runs(&cell0[..cols], min_cell, w, run_total) } else { Vec::new() };
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
     let room = points + 3 * w;
@@ -718,12 +656,10 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
     // Sized up front, as `runs` is: grown by pushes, the three were three
     // of a 32² tile's eight allocations and a fifth of its time (probe).
     let chunk_total = cols.div_ceil(w) + runs.len();
-    chunks.clear();
-    chunk_axis.clear();
-    chunk_axis.reserve(chunk_total);
+    let mut chunks: Vec<Chunk> = Vec::with_capacity(if long_runs { chunk_total } else { 0 });
+    let mut chunk_axis: Vec<ChunkAxis> = Vec::with_capacity(chunk_total);
     if long_runs {
-        chunks.reserve(chunk_total);
-        for &(start, end, cell) in runs.iter() {
+        for &(start, end, cell) in &runs {
             for s in (start..end).step_by(w) {
                 chunks.push(Chunk { start: s, end, cell });
                 let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
@@ -734,7 +670,7 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
         }
     }
     if batches {
-        fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, min_cell, points);
+        fill_row_batches::<K, B, D>(kind, span, out, (&chunks, &chunk_axis), &mut point_rows, min_cell, points);
         for table in [point_rows.records, bound, coef, blends] {
             table.recycle();
         }
@@ -745,10 +681,7 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
         *c = if j < cols { (*c).wrapping_sub(min_cell) } else { 0 };
     }
     // Each aligned chunk of columns' cells, for the per-lane path.
-    span_of.clear();
-    if !long_runs {
-        span_of.extend(cell0[..cols].chunks(w).map(chunk_cells));
-    }
+    let span_of: Vec<ChunkCells> = if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(chunk_cells).collect() };
     // Whole rows whose chunks all reach their cells one way (a regular
     // grid finer than its lanes: one cell per column, or a few) run a loop
     // that knows it, with their positions and fades stored by chunk.
@@ -761,11 +694,6 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
             chunk_axis.push(a);
         }
     }
-    // Read-only from here, as slices: through the workspace's `&mut Vec`s
-    // the row loop reloaded each vector's pointer and length after every
-    // store (3D improved fast over 256³: 0.35 → 0.42 ns/point).
-    let (cell0, frac0, fade0) = (&cell0[..], &frac0[..], &fade0[..]);
-    let (chunks, chunk_axis, span_of) = (&chunks[..], &chunk_axis[..], &span_of[..]);
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     let mut band = Band { columns: (0, 0), rows: Vec::new() };
@@ -808,7 +736,7 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
                 band.columns = columns;
             }
             if new_plane {
-                for (ch, axis) in chunks.iter().zip(chunk_axis.iter()) {
+                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let rec = OneCell::new(&bound, ch.cell, bound_fields);
                     plane_blends(kind, axis.lanes::<B>(), &rec, &mut blends, ch.start);
                 }
@@ -849,28 +777,28 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
         // The points: for each run of columns in one cell, whole lanes.
         // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
         // end are overwritten by the next run or row, or not stored.
-        let row = Row { frac: frac0, fade: fade0, weights, off_line: (1..D).any(|d| f[d] != 0.0) };
+        let row = Row { frac: &frac0, fade: &fade0, weights, off_line: (1..D).any(|d| f[d] != 0.0) };
         let row_end = i0 + n - lo;
         let (a0, a1) = (i0 - lo, row_end);
         let whole = a0 == 0 && a1 == cols;
         match (long_runs, fast) {
             // Whole rows: every chunk, written where it starts.
             (true, false) if whole => {
-                for (ch, axis) in chunks.iter().zip(chunk_axis.iter()) {
+                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
                     let v = row.exact_at(kind, x, fade, &OneCell::new(records, ch.cell, bound_fields));
                     emit(v, &mut out[o0 + ch.start..]);
                 }
             }
             (true, true) if whole => {
-                for (ch, axis) in chunks.iter().zip(chunk_axis.iter()) {
+                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
                     emit(poly_at::<K, B, D>(x, fade, &OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() }), &mut out[o0 + ch.start..]);
                 }
             }
             // Part of a row: chunks clipped to it.
             (true, false) => {
-                for ch in chunks.iter() {
+                for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
                         let rec = OneCell::new(records, ch.cell, bound_fields);
@@ -879,7 +807,7 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
                 }
             }
             (true, true) => {
-                for ch in chunks.iter() {
+                for ch in &chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
                         let coef = OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() };
@@ -893,14 +821,14 @@ fn fill_span_in<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
                 let view = records.entries(bound_fields, 0, records.stride());
                 match reach {
                     Some(Reach::Consecutive) if whole => {
-                        for (k, (cells, axis)) in span_of.iter().zip(chunk_axis.iter()).enumerate() {
+                        for (k, (cells, axis)) in span_of.iter().zip(&chunk_axis).enumerate() {
                             let (x, fade) = axis.lanes::<B>();
                             let v = row.exact_at(kind, x, fade, &At { entries: &view, at: cells.first });
                             emit(v, &mut out[o0 + k * w..]);
                         }
                     }
                     Some(Reach::Near) if whole => {
-                        for (k, (cells, axis)) in span_of.iter().zip(chunk_axis.iter()).enumerate() {
+                        for (k, (cells, axis)) in span_of.iter().zip(&chunk_axis).enumerate() {
                             let (x, fade) = axis.lanes::<B>();
                             let lane = B::load_int(&cell0[k * w..]).sub(B::Int::splat(cells.first as i32));
                             let rec = PerLane::<B, true> { entries: &view, first: cells.first, lane: [lane, lane.add_c(1)] };
