@@ -900,7 +900,7 @@ impl<B: BatchLanes> Source<B> for BatchRow<'_> {
 /// cell, up to WIDTH rows of one plane of cells at a time: each lattice
 /// point's records are bound for all the batch's rows at once (one row per
 /// lane: the same operations on the same operands as binding row by row),
-/// then each run of chunks in one cell writes the batch's rows. Row by row,
+/// then each row of the batch is written chunk by chunk from them. Row by row,
 /// a short row (a 32² tile) paid a vector bind for two points, the round
 /// trip through the bound table and the row's bookkeeping for two chunks.
 #[inline(always)]
