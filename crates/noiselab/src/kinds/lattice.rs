@@ -31,7 +31,6 @@
 use super::{corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, EntriesMut, MAX_CORNERS};
 use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// How many float and integer fields of a [`Corner`] are in use.
@@ -397,6 +396,16 @@ impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     }
 }
 
+/// `len` zeros, allocated without `alloc_zeroed`: glibc's `calloc` skips
+/// its per-thread cache (probe, 32² tiles of 2D improved on AVX2: the
+/// three axis vectors took about 750 instructions each through it, 3.1 M
+/// of a 4096-tile round's 64.5 M).
+fn zeros<T: Copy + Default>(len: usize) -> Vec<T> {
+    let mut v = Vec::with_capacity(len);
+    v.resize(len, T::default());
+    v
+}
+
 /// How many runs of equal cells the columns have.
 fn run_count(cells: &[i32]) -> usize {
     // Branch-free, so it vectorises.
@@ -583,7 +592,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     // Axis 0 once per span: cell, position and fade of each column.
     let cols = hi - lo;
     let padded = cols.div_ceil(w) * w + w;
-    let (mut cell0, mut frac0, mut fade0) = (vec![0i32; padded], vec![0f32; padded], vec![0f32; padded]);
+    let (mut cell0, mut frac0, mut fade0) = (zeros::<i32>(padded), zeros::<f32>(padded), zeros::<f32>(padded));
     let mut k = 0;
     while k < cols {
         let x = if k + w <= cols {
