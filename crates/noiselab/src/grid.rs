@@ -572,6 +572,9 @@ fn points_span<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, points: &[
 /// Up to WIDTH points as lanes per axis (the last point repeated).
 #[inline(always)]
 fn lanes_of<B: BatchLanes, const D: usize>(pc: &[[f32; D]]) -> [B; D] {
+    if B::LEVEL == SimdLevel::Avx512 && D > 1 && pc.len() == B::WIDTH {
+        return deinterleave::<B, D>(pc.as_flattened());
+    }
     let mut p = [B::splat(0.0); D];
     for (d, pd) in p.iter_mut().enumerate() {
         let mut xs = [0f32; 16];
@@ -583,9 +586,66 @@ fn lanes_of<B: BatchLanes, const D: usize>(pc: &[[f32; D]]) -> [B; D] {
     p
 }
 
+/// WIDTH points stored point by point (`flat`, D·WIDTH coordinates) as
+/// lanes per axis: the D registers of coordinates permuted two at a time,
+/// where loading them a coordinate per lane took 48 inserts per 16 3D
+/// points (AVX-512, 4 M random 3D points of improved noise in the probe:
+/// 2.72 → 2.55 ns/point). Only on AVX-512, whose two-register permute is
+/// one instruction.
+#[inline(always)]
+fn deinterleave<B: BatchLanes, const D: usize>(flat: &[f32]) -> [B; D] {
+    let w = B::WIDTH;
+    let mut regs = [B::splat(0.0); D];
+    for (q, r) in regs.iter_mut().enumerate() {
+        *r = B::from_slice(&flat[q * w..]);
+    }
+    let mut p = [B::splat(0.0); D];
+    for (d, pd) in p.iter_mut().enumerate() {
+        // Lane k of axis d is coordinate k·D + d, in register (k·D + d) / w.
+        // The first permute takes the lanes found in registers 0 and 1,
+        // each later one those in its register, keeping the rest.
+        let mut idx = [0i32; 16];
+        for (k, i) in idx.iter_mut().enumerate().take(w) {
+            *i = (k * D + d).min(2 * w - 1) as i32;
+        }
+        let mut lanes = B::permute2(regs[0], regs[1], B::load_int(&idx));
+        for (q, &r) in regs.iter().enumerate().skip(2) {
+            for (k, i) in idx.iter_mut().enumerate().take(w) {
+                let at = k * D + d;
+                *i = if at / w == q { (w + at % w) as i32 } else { k as i32 };
+            }
+            lanes = B::permute2(lanes, r, B::load_int(&idx));
+        }
+        *pd = lanes;
+    }
+    p
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Lane k of axis d is point k's coordinate d, for every dimension
+    /// that permutes and both lane widths.
+    #[test]
+    fn deinterleave_puts_each_axis_in_its_lanes() {
+        fn check<B: BatchLanes, const D: usize>() {
+            let w = B::WIDTH;
+            let pts: Vec<[f32; D]> = (0..w).map(|k| core::array::from_fn(|d| (k * 10 + d) as f32)).collect();
+            let lanes = deinterleave::<B, D>(pts.as_flattened());
+            for (d, l) in lanes.iter().enumerate() {
+                let mut got = [0f32; 16];
+                l.store(&mut got);
+                let want: Vec<f32> = (0..w).map(|k| (k * 10 + d) as f32).collect();
+                assert_eq!(&got[..w], &want[..], "{D}D axis {d}, {w} lanes");
+            }
+        }
+        check::<crate::lanes::F32x16, 2>();
+        check::<crate::lanes::F32x16, 3>();
+        check::<crate::lanes::F32x16, 4>();
+        check::<crate::lanes::F32x8, 3>();
+        check::<crate::lanes::F32x8, 4>();
+    }
 
     /// Row pieces from any start cover the span in order, each with the
     /// indices `row_indices` gives its row (the iterator counts them up).
