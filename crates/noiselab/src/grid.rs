@@ -120,7 +120,8 @@ pub enum Accuracy {
     #[default]
     Exact,
     /// Lattice kinds (classic, improved, value, modified) and fractals of
-    /// them evaluate each grid row as a polynomial per lattice cell: within
+    /// them evaluate each grid row as a polynomial per lattice cell (or,
+    /// where cells hold several rows, each column of a cell's rows): within
     /// 1e-6 of [`Accuracy::Exact`] (absolute, tested), and faster. Where a
     /// row's cells are narrower than a SIMD register's worth of points (a
     /// fractal's fine octaves), and for other kinds, the fill is exact.
