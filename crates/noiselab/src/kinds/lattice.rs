@@ -295,6 +295,32 @@ fn store_record<B: BatchLanes>(columns: &mut EntriesMut<'_>, base: usize, at: us
     }
 }
 
+/// Bind every lattice point of a plane's rows (row r hashed in slot
+/// `slot_of[r]` of `hashed`) to the offsets of positions `f` on axes 1..,
+/// into `bound` (row r's records from field r · BOUND).
+#[inline(always)]
+fn bind_plane<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    (hashed, slot_of): (&Columns, &[usize; MAX_CORNERS / 2]),
+    f: [B; D],
+    bound: &mut Columns,
+    points: usize,
+) {
+    let whole_lanes = points.div_ceil(B::WIDTH) * B::WIDTH;
+    for (r, &slot) in slot_of.iter().enumerate().take(PointRows::<D>::PER_PLANE) {
+        let (from, to) = (slot * K::HASHED.total(), r * K::BOUND.total());
+        let offset = offsets(f, 2 * r);
+        let hashed = hashed.entries(from + K::HASHED.total(), 0, whole_lanes);
+        let mut row = bound.entries_mut(to + K::BOUND.total(), 0, whole_lanes);
+        let mut v = 0;
+        while v < points {
+            let point = At { entries: &hashed, at: v }.record(from, 0, K::HASHED);
+            store_record(&mut row, to, v, &kind.bind(point, offset), K::BOUND);
+            v += B::WIDTH;
+        }
+    }
+}
+
 /// Where lanes find their records' fields. (Traits, not closures: a
 /// closure that LLVM declines to inline would run outside the batch
 /// driver's instruction-set clone.)
@@ -349,9 +375,7 @@ impl<'a> OneCell<'a> {
     fn new(columns: &'a Columns, cell: usize, fields: usize) -> Self {
         OneCell(columns.entries(fields, cell, 2))
     }
-}
 
-impl OneCell<'_> {
     /// The same entries from field `base` on, as a source whose field 0 is
     /// `base`.
     #[inline(always)]
@@ -680,8 +704,6 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
     let room = points + 3 * w;
-    // The points in whole lanes, as rows of them are hashed and bound.
-    let whole_lanes = points.div_ceil(w) * w;
     let rows = PointRows::<D>::PER_PLANE;
     let mut point_rows = PointRows::<D>::new(K::HASHED, room);
     // Each row's bound records, field-major: the fields a cell's corners read.
@@ -759,17 +781,8 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             weights[d] = B::splat(kind.fade(f[d]));
             fs[d] = B::splat(f[d]);
         }
-        for (r, &slot) in slot_of.iter().enumerate().take(if new_plane || !by_plane { rows } else { 0 }) {
-            let (from, to) = (slot * K::HASHED.total(), r * K::BOUND.total());
-            let offset = offsets(fs, 2 * r);
-            let hashed = point_rows.records.entries(from + K::HASHED.total(), 0, whole_lanes);
-            let mut row = bound.entries_mut(to + K::BOUND.total(), 0, whole_lanes);
-            let mut v = 0;
-            while v < points {
-                let point = At { entries: &hashed, at: v }.record(from, 0, K::HASHED);
-                store_record(&mut row, to, v, &kind.bind(point, offset), K::BOUND);
-                v += w;
-            }
+        if new_plane || !by_plane {
+            bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, &mut bound, points);
         }
         if by_plane {
             let columns = (i0 - lo, i0 - lo + n);
@@ -1084,7 +1097,6 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let w = B::WIDTH;
     let rows = PointRows::<D>::PER_PLANE;
     let ncell = points - 1;
-    let whole_lanes = points.div_ceil(w) * w;
     let room = point_rows.records.stride();
     // The plane's rows' records bound at v = 0 and at v = 1.
     let mut bound = [Columns::new(rows * K::BOUND.total(), room), Columns::new(rows * K::BOUND.total(), room)];
@@ -1118,18 +1130,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
         for (v, table) in bound.iter_mut().enumerate() {
             fs[1] = B::cst(v as f64);
-            for (r, &slot) in slot_of.iter().enumerate().take(rows) {
-                let (from, to) = (slot * K::HASHED.total(), r * K::BOUND.total());
-                let offset = offsets(fs, 2 * r);
-                let hashed = point_rows.records.entries(from + K::HASHED.total(), 0, whole_lanes);
-                let mut row = table.entries_mut(to + K::BOUND.total(), 0, whole_lanes);
-                let mut at = 0;
-                while at < points {
-                    let point = At { entries: &hashed, at }.record(from, 0, K::HASHED);
-                    store_record(&mut row, to, at, &kind.bind(point, offset), K::BOUND);
-                    at += w;
-                }
-            }
+            bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, table, points);
         }
         // Half-blend h (bit 0: at v = 1; bit 1: the upper corners on axis
         // 1) weighs pair k (bit 0: upper on axis 1; bit d − 1: on axis d)
