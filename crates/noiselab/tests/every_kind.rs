@@ -100,6 +100,9 @@ fn same(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
 }
 
+// Out of line (as every generic helper here): inlined, each test's helpers
+// made one huge function that LLVM compiles on one core.
+#[inline(never)]
 fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
     let pts = probe_points::<D>();
     let scalar: Vec<f32> = pts.iter().map(|&p| noise.get_f32(p)).collect();
@@ -178,6 +181,7 @@ fn batch_equals_scalar_f32_bit_for_bit() {
     for_every_kind!(check);
 }
 
+#[inline(never)]
 fn check_range<N: Noise<D>, const D: usize>(name: &str, noise: &N, (lo, hi): (f64, f64)) {
     let mut rng = SplitMix64(D as u64 * 7919);
     let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -205,6 +209,7 @@ fn values_stay_in_documented_range() {
     for_every_kind!(check);
 }
 
+#[inline(never)]
 fn check_special<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         for axis in 0..D {
@@ -252,6 +257,7 @@ fn noises_are_send_sync_and_cheap_to_share() {
 
 /// The contract on arbitrary inputs: non-finite in, NaN out; finite in,
 /// finite out; every API agrees.
+#[inline(never)]
 fn check_any<N: Noise<D>, const D: usize>(name: &str, noise: &N, coords: &[f64]) {
     let mut p = [0f64; D];
     p.copy_from_slice(&coords[..D]);
@@ -292,6 +298,7 @@ proptest::proptest! {
 /// the bits of the scalar API, wherever the tasks cut the rows.
 #[test]
 fn large_grids_equal_the_scalar_api() {
+    #[inline(never)]
     fn check<N: Noise<D>, const D: usize>(name: &str, noise: &N, grid: Grid<D>) {
         let mut out = vec![0f32; grid.len()];
         noise.fill_grid(&grid, &mut out).unwrap();

@@ -29,6 +29,9 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
 }
 
 /// The largest |fast − exact| over the grids, at every instruction-set level.
+// Out of line (as every generic helper here): inlined, each test's helpers
+// made one huge function that LLVM compiles on one core.
+#[inline(never)]
 fn worst<N: Noise<D>, const D: usize>(noise: &N) -> f32 {
     let mut worst = 0f32;
     for grid in grids::<D>() {
@@ -101,6 +104,7 @@ fn fast_fills_of_other_kinds_are_exact() {
     }
 }
 
+#[inline(never)]
 fn fill<N: Noise<2>>(level: SimdLevel, noise: &N, grid: &Grid<2>, accuracy: Accuracy) -> Vec<f32> {
     let mut out = vec![0f32; grid.len()];
     fill_grid_at(level, noise, grid, &mut out, accuracy).unwrap();
