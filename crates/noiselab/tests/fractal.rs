@@ -12,10 +12,10 @@ fn random_points<const D: usize>(count: usize, seed: u64) -> Vec<[f64; D]> {
     (0..count).map(|_| core::array::from_fn(|_| (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0)).collect()
 }
 
-/// Every mode stays inside `mode.range(r)` for a base of range ±r (and,
-/// for bases that use both signs, spans a good part of it).
 // Out of line (as every generic helper here): inlined, each test's helpers
 // made one huge function that LLVM compiles on one core.
+/// Every mode stays inside `mode.range(r)` for a base of range ±r (and,
+/// for bases that use both signs, spans a good part of it).
 #[inline(never)]
 fn check_ranges<N: Noise<D>, const D: usize>(name: &str, make: impl Fn(u32) -> N, r: f64) {
     let symmetric = name != "worley";

@@ -28,9 +28,9 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
     ]
 }
 
-/// The largest |fast − exact| over the grids, at every instruction-set level.
 // Out of line (as every generic helper here): inlined, each test's helpers
 // made one huge function that LLVM compiles on one core.
+/// The largest |fast − exact| over the grids, at every instruction-set level.
 #[inline(never)]
 fn worst<N: Noise<D>, const D: usize>(noise: &N) -> f32 {
     let mut worst = 0f32;

@@ -126,12 +126,12 @@ fn bad_parameters_are_typed_errors() {
     assert!(Worley::new(0).get([1e30, -1e30]).is_finite());
 }
 
+// Out of line (as every generic helper here): inlined, each test's helpers
+// made one huge function that LLVM compiles on one core.
 /// The grid fill (feature points per row of cells, permuted into lanes)
 /// against the point path, bit for bit, at every instruction-set level:
 /// fine and coarse spacing (chunks within one cell, across many, and the
 /// fallbacks), reversed axes, tiling, every output and metric, 1D–4D.
-// Out of line (as every generic helper here): inlined, each test's helpers
-// made one huge function that LLVM compiles on one core.
 #[inline(never)]
 fn grid_equals_points<const D: usize>(w: &Worley, grid: &noiselab::Grid<D>)
 where
