@@ -86,7 +86,7 @@ pub fn npy_header(shape: &[usize]) -> Vec<u8> {
 }
 
 /// Map a value to [0, 1] over `range`, clamping; NaN maps to 0.
-fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
+pub fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
     let t = (v as f64 - lo) / (hi - lo);
     if t.is_nan() {
         0.0
@@ -219,27 +219,5 @@ impl Pending {
         let persisted =
             if self.force { self.temp.persist(&self.dest) } else { self.temp.persist_noclobber(&self.dest) };
         persisted.map(|_| ()).map_err(|e| err(e.error))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn npy_header_is_aligned_and_parsable() {
-        let h = npy_header(&[3, 5]);
-        assert_eq!(h.len() % 64, 0);
-        assert!(h.starts_with(b"\x93NUMPY\x01\x00"));
-        let text = std::str::from_utf8(&h[10..]).unwrap();
-        assert!(text.contains("'shape': (3, 5)"));
-        assert!(text.ends_with('\n'));
-    }
-
-    #[test]
-    fn unit_mapping_clamps_and_handles_nan() {
-        assert_eq!(unit(0.0, (-1.0, 1.0)), 0.5);
-        assert_eq!(unit(5.0, (-1.0, 1.0)), 1.0);
-        assert_eq!(unit(f32::NAN, (-1.0, 1.0)), 0.0);
     }
 }

@@ -460,21 +460,3 @@ pub fn parse_slice(s: &str) -> Result<Slice, String> {
 pub fn parse_list(s: &str) -> Result<Vec<f64>, String> {
     s.split(',').map(finite).collect()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn parses_arguments() {
-        assert_eq!(parse_size("640x480").unwrap(), (640, 480));
-        assert!(parse_size("0x10").is_err());
-        assert!(parse_size("10").is_err());
-        assert!(parse_scale("0").is_err());
-        assert!(parse_scale("-3").is_err());
-        assert!(parse_scale("nan").is_err());
-        assert_eq!(parse_pair("1.5,-2").unwrap(), (1.5, -2.0));
-        assert!(parse_pair("1").is_err());
-        assert_eq!(parse_list("0.5,2").unwrap(), vec![0.5, 2.0]);
-    }
-}

@@ -46,33 +46,14 @@ pub fn run(args: &SampleArgs) -> Result<(), String> {
 }
 
 /// Coordinates separated by commas and/or whitespace.
-fn split(line: &str) -> Vec<&str> {
+pub fn split(line: &str) -> Vec<&str> {
     line.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).collect()
 }
 
-fn parse_point<T: std::str::FromStr>(fields: &[&str], dims: usize) -> Result<Vec<T>, String> {
+/// Exactly `dims` numbers, or an error naming the field that is not one.
+pub fn parse_point<T: std::str::FromStr>(fields: &[&str], dims: usize) -> Result<Vec<T>, String> {
     if fields.len() != dims {
         return Err(format!("expected {dims} coordinates, got {}", fields.len()));
     }
     fields.iter().map(|s| s.parse::<T>().map_err(|_| format!("'{s}' is not a number"))).collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn splits_on_commas_and_spaces() {
-        assert_eq!(split(" 1.5, -2  3e1\t4 "), vec!["1.5", "-2", "3e1", "4"]);
-        assert_eq!(split("1,,2"), vec!["1", "2"]);
-    }
-
-    #[test]
-    fn parses_exact_counts_only() {
-        assert_eq!(parse_point::<f64>(&["1", "2"], 2).unwrap(), vec![1.0, 2.0]);
-        assert!(parse_point::<f64>(&["1"], 2).is_err());
-        assert!(parse_point::<f64>(&["1", "x"], 2).unwrap_err().contains("'x'"));
-        // NaN and infinities are numbers: the library defines their result.
-        assert!(parse_point::<f64>(&["nan", "inf"], 2).is_ok());
-    }
 }
