@@ -1,7 +1,6 @@
 //! Simplex noise against Gustavson's SimplexNoise.java, 2012-03-09 (tests/fixtures/SOURCES.md).
 
-mod common;
-use common::{assert_bit_exact, read_reference};
+use crate::common::{assert_bit_exact, read_reference};
 use noiselab::{Noise, Simplex};
 
 #[test]

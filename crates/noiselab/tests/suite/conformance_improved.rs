@@ -1,7 +1,6 @@
 //! Improved noise against Perlin's reference code (tests/fixtures/SOURCES.md).
 
-mod common;
-use common::{assert_bit_exact, read_reference};
+use crate::common::{assert_bit_exact, read_reference};
 use noiselab::hash::PERLIN_PERMUTATION;
 use noiselab::{Improved, ImprovedVariant, Noise};
 

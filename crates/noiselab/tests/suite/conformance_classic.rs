@@ -1,7 +1,6 @@
 //! Classic noise against Perlin's original 1985 C program (tests/fixtures/SOURCES.md).
 
-mod common;
-use common::{assert_bit_exact, read_reference};
+use crate::common::{assert_bit_exact, read_reference};
 use noiselab::{Classic, Noise};
 
 #[test]
