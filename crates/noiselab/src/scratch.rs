@@ -18,6 +18,15 @@ use alloc::vec::Vec;
 #[cfg(feature = "std")]
 const KEPT: usize = 8;
 
+/// Most values a thread's pool holds in all (32 MiB), so memory stays
+/// bounded however large a fill once was: a fill whose buffers exceed it
+/// (rows of millions of points, fractals of dozens of octaves over long
+/// rows) allocates per call, a small cost beside that much work. The
+/// performance workloads stay well inside it (6-octave fBm of 2048² rows:
+/// 0.8 M values).
+#[cfg(feature = "std")]
+const KEPT_VALUES: usize = 8 << 20;
+
 #[cfg(feature = "std")]
 std::thread_local! {
     static POOL: core::cell::Cell<Vec<Vec<f32>>> = const { core::cell::Cell::new(Vec::new()) };
@@ -59,11 +68,14 @@ pub(crate) fn give_back(buffer: Vec<f32>) {
     #[cfg(feature = "std")]
     POOL.with(|slot| {
         let mut pool = slot.take();
+        let held: usize = pool.iter().map(Vec::capacity).sum();
         if pool.len() < KEPT {
-            pool.push(buffer);
+            if held + buffer.capacity() <= KEPT_VALUES {
+                pool.push(buffer);
+            }
         } else if let Some(smallest) = pool.iter_mut().min_by_key(|b| b.capacity()) {
-            // Full: keep the larger.
-            if smallest.capacity() < buffer.capacity() {
+            // Full: keep the larger, within the bound.
+            if smallest.capacity() < buffer.capacity() && held - smallest.capacity() + buffer.capacity() <= KEPT_VALUES {
                 *smallest = buffer;
             }
         }
@@ -76,6 +88,34 @@ pub(crate) fn give_back(buffer: Vec<f32>) {
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
+
+    /// The capacities of the buffers this thread's pool holds.
+    fn held() -> Vec<usize> {
+        POOL.with(|slot| {
+            let pool = slot.take();
+            let held = pool.iter().map(Vec::capacity).collect();
+            slot.set(pool);
+            held
+        })
+    }
+
+    /// A buffer past the bound is freed, one within it kept, and however
+    /// many large buffers come back the pool stays within the bound.
+    #[test]
+    fn keeps_at_most_the_bound() {
+        give_back(take(KEPT_VALUES + 1));
+        assert!(held().iter().all(|&c| c <= KEPT_VALUES));
+        let kept = take(1 << 20);
+        let capacity = kept.capacity();
+        give_back(kept);
+        assert!(held().contains(&capacity));
+        let many: Vec<_> = (0..KEPT).map(|_| take(3 << 20)).collect();
+        for b in many {
+            give_back(b);
+        }
+        let total: usize = held().iter().sum();
+        assert!((2 * (3 << 20)..=KEPT_VALUES).contains(&total), "{total} values held");
+    }
 
     /// A small request takes the smallest buffer that fits, leaving the
     /// large one for the large request (a fractal's octaves beside its
