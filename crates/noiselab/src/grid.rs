@@ -14,7 +14,7 @@
 //! ([`Accuracy::Exact`]); lattice kinds hash once per cell instead of once
 //! per point (`kinds::lattice`), fractals fill octave by octave.
 
-use crate::lanes::{BatchLanes, F32x8, Lanes};
+use crate::lanes::{BatchLanes, Lanes};
 use crate::noise::Noise;
 use alloc::vec::Vec;
 use core::fmt;
@@ -453,12 +453,12 @@ pub(crate) fn fill_axes_at<N: Noise<D>, const D: usize>(
             let per_task = (out.len() / (4 * rayon::current_num_threads())).max(PAR_CHUNK);
             let chunk = if nx <= per_task { per_task / nx * nx } else { per_task };
             out.par_chunks_mut(chunk).enumerate().for_each(|(k, part)| {
-                dispatch_span(level, noise, Span { axes, start: k * chunk, accuracy }, part)
+                noise.dispatch_span(level, Span { axes, start: k * chunk, accuracy }, part)
             });
             return;
         }
     }
-    dispatch_span(level, noise, Span { axes, start: 0, accuracy }, out)
+    noise.dispatch_span(level, Span { axes, start: 0, accuracy }, out)
 }
 
 /// One point in `f64` or `f32` ([`Noise::get`], [`Noise::get_f32`]),
@@ -483,7 +483,7 @@ pub(crate) fn point<N: Noise<D>, L: Lanes, const D: usize>(noise: &N, p: [L; D])
 
 /// One span at the best level (the bridge for noises chosen at run time).
 pub(crate) fn fill_span_best<N: Noise<D>, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
-    dispatch_span(best_level(), noise, span, out)
+    noise.dispatch_span(best_level(), span, out)
 }
 
 pub(crate) fn fill_points<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
@@ -504,59 +504,125 @@ pub fn fill_points_at<N: Noise<D>, const D: usize>(
         if points.len() >= 4 * PAR_CHUNK {
             out.par_chunks_mut(PAR_CHUNK)
                 .zip(points.par_chunks(PAR_CHUNK))
-                .for_each(|(o, p)| dispatch_points(level, noise, p, o));
+                .for_each(|(o, p)| noise.dispatch_points(level, p, o));
             return;
         }
     }
-    dispatch_points(level, noise, points, out)
+    noise.dispatch_points(level, points, out)
 }
 
-/// Runs `$body::<N, LANES, D>(noise, args…)` compiled for the best level
-/// available up to `level`, with that level's lane type.
-macro_rules! dispatcher {
-    ($name:ident, $body:ident, ($($arg:ident : $ty:ty),*)) => {
-        fn $name<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, $($arg: $ty),*) {
-            #[cfg(all(feature = "std", target_arch = "x86_64"))]
-            {
-                #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
-                unsafe fn avx512<N: Noise<D>, const D: usize>(noise: &N, $($arg: $ty),*) {
-                    $body::<N, crate::lanes::avx512::X16, D>(noise, $($arg),*)
-                }
-                #[target_feature(enable = "avx2")]
-                unsafe fn avx2<N: Noise<D>, const D: usize>(noise: &N, $($arg: $ty),*) {
-                    $body::<N, crate::lanes::avx2::X8, D>(noise, $($arg),*)
-                }
-                // SAFETY: each clone runs only when the CPU reports its features.
-                match level.min(best_level()) {
-                    SimdLevel::Avx512 => return unsafe { avx512(noise, $($arg),*) },
-                    SimdLevel::Avx2 => return unsafe { avx2(noise, $($arg),*) },
-                    SimdLevel::Baseline => {}
+/// The level to run for a request of `level`: the best the CPU has up to it.
+#[inline]
+pub(crate) fn runnable(level: SimdLevel) -> SimdLevel {
+    level.min(best_level())
+}
+
+/// Defines `mod batch` in the calling module: the batch drivers
+/// (a span through [`Noise::fill_span`], a list of points through
+/// [`Noise::sample`]) compiled once per instruction-set level, each level
+/// in a submodule of its own, and `span` / `points` to pick one at run time.
+///
+/// Why every kind's module has its own: rustc compiles a generic function's
+/// instances in the codegen unit of the module that defines it, and LLVM
+/// optimises one codegen unit on one core. With one set of clones here, all
+/// kinds' batch code at all levels formed one codegen unit: the test binary
+/// that names every kind spent over 13 minutes optimising it on one core
+/// while the other idled. A kind's `Noise` impl enters its own module's
+/// clones through [`batch_entry!`], so kinds and levels compile in
+/// parallel. The code is the same wherever it is compiled.
+macro_rules! batch_clones {
+    ($($vis:tt)*) => {
+        /// This module's batch drivers, one clone per instruction-set level
+        /// (`crate::grid::batch_clones!` says why they live here).
+        $($vis)* mod batch {
+            use crate::grid::{SimdLevel, Span};
+            use crate::noise::Noise;
+
+            /// `span` at `level` (the best the CPU has up to it).
+            pub(crate) fn span<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+                // SAFETY: `runnable` never exceeds the features the CPU
+                // reports, and the baseline clone needs none.
+                unsafe {
+                    match crate::grid::runnable(level) {
+                        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+                        SimdLevel::Avx512 => avx512::span(noise, span, out),
+                        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+                        SimdLevel::Avx2 => avx2::span(noise, span, out),
+                        _ => baseline::span(noise, span, out),
+                    }
                 }
             }
-            let _ = level;
-            $body::<N, F32x8, D>(noise, $($arg),*)
+
+            /// `points` at `level` (the best the CPU has up to it).
+            pub(crate) fn points<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, points: &[[f32; D]], out: &mut [f32]) {
+                // SAFETY: as for `span`.
+                unsafe {
+                    match crate::grid::runnable(level) {
+                        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+                        SimdLevel::Avx512 => avx512::points(noise, points, out),
+                        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+                        SimdLevel::Avx2 => avx2::points(noise, points, out),
+                        _ => baseline::points(noise, points, out),
+                    }
+                }
+            }
+
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            crate::grid::level_clones!(avx512, crate::lanes::avx512::X16, #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]);
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            crate::grid::level_clones!(avx2, crate::lanes::avx2::X8, #[target_feature(enable = "avx2")]);
+            crate::grid::level_clones!(baseline, crate::lanes::F32x8,);
         }
     };
 }
+pub(crate) use batch_clones;
 
-dispatcher!(dispatch_span, span_body, (span: Span<'_, D>, out: &mut [f32]));
+/// One level's module of [`batch_clones!`]: the span and point drivers on
+/// lanes `$lanes`, compiled with `$feature`.
+macro_rules! level_clones {
+    ($module:ident, $lanes:ty, $(#[$feature:meta])?) => {
+        mod $module {
+            use crate::grid::Span;
+            use crate::noise::Noise;
 
-/// One span at `level` through `noise`'s own driver: a kind whose grid path
-/// is large calls this from its `fill_span` (with its lanes' level) so that
-/// the path is compiled once per dimension and level, not inlined into
-/// every noise containing that kind.
-pub(crate) fn fill_span_at<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, span: Span<'_, D>, out: &mut [f32]) {
-    dispatch_span(level, noise, span, out)
+            $(#[$feature])?
+            pub(super) unsafe fn span<N: Noise<D>, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
+                noise.fill_span::<$lanes>(span, out)
+            }
+
+            $(#[$feature])?
+            pub(super) unsafe fn points<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
+                crate::grid::points_body::<N, $lanes, D>(noise, points, out)
+            }
+        }
+    };
 }
-dispatcher!(dispatch_points, points_span, (points: &[[f32; D]], out: &mut [f32]));
+pub(crate) use level_clones;
 
-#[inline(always)]
-fn span_body<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, span: Span<'_, D>, out: &mut [f32]) {
-    noise.fill_span::<B>(span, out)
+/// The `Noise` methods that enter the calling module's [`batch_clones!`]
+/// (`$d`: the impl's dimension, a literal or its const parameter).
+macro_rules! batch_entry {
+    ($d:tt) => {
+        #[inline]
+        fn dispatch_span(&self, level: crate::grid::SimdLevel, span: crate::grid::Span<'_, $d>, out: &mut [f32]) {
+            batch::span(level, self, span, out)
+        }
+        #[inline]
+        fn dispatch_points(&self, level: crate::grid::SimdLevel, points: &[[f32; $d]], out: &mut [f32]) {
+            batch::points(level, self, points, out)
+        }
+    };
 }
+pub(crate) use batch_entry;
 
+// The clones of noises that do not name their own (yours, and noises chosen
+// at run time).
+batch_clones!(pub(crate));
+
+/// The point-list driver on lanes `B`: whole chunks of lanes through
+/// [`Noise::sample`], the last chunk padded.
 #[inline(always)]
-fn points_span<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
+pub(crate) fn points_body<N: Noise<D>, B: BatchLanes, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
     let w = B::WIDTH;
     // Two chunks at a time where possible: independent work the CPU can overlap.
     let pairs = points.len() / (2 * w) * (2 * w);

@@ -1,6 +1,6 @@
 //! The one trait every noise implements, and its derivative companion.
 
-use crate::grid::{self, Accuracy, Grid, GridError, Span};
+use crate::grid::{self, Accuracy, Grid, GridError, SimdLevel, Span};
 use crate::lanes::{BatchLanes, F32x16, F32x8, Lanes};
 
 /// A coherent-noise field over `D`-dimensional space.
@@ -81,6 +81,28 @@ pub trait Noise<const D: usize>: Send + Sync {
     {
         grid::fill_pointwise::<Self, B, D>(self, span, out)
     }
+
+    /// The batch drivers' entry for a span: [`Noise::fill_span`] compiled
+    /// for `level` (the best the CPU has up to it). Kinds override it to
+    /// enter clones compiled in their own module (`grid::batch_clones!`);
+    /// the values are the same either way.
+    #[doc(hidden)]
+    fn dispatch_span(&self, level: SimdLevel, span: Span<'_, D>, out: &mut [f32])
+    where
+        Self: Sized,
+    {
+        grid::batch::span(level, self, span, out)
+    }
+
+    /// The batch drivers' entry for a list of points, as
+    /// [`Noise::dispatch_span`] for spans.
+    #[doc(hidden)]
+    fn dispatch_points(&self, level: SimdLevel, points: &[[f32; D]], out: &mut [f32])
+    where
+        Self: Sized,
+    {
+        grid::batch::points(level, self, points, out)
+    }
 }
 
 /// A noise with an analytic gradient.
@@ -106,6 +128,14 @@ impl<N: Noise<D>, const D: usize> Noise<D> for &N {
     #[inline(always)]
     fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
         (**self).fill_span::<B>(span, out)
+    }
+    #[inline]
+    fn dispatch_span(&self, level: SimdLevel, span: Span<'_, D>, out: &mut [f32]) {
+        (**self).dispatch_span(level, span, out)
+    }
+    #[inline]
+    fn dispatch_points(&self, level: SimdLevel, points: &[[f32; D]], out: &mut [f32]) {
+        (**self).dispatch_points(level, points, out)
     }
 }
 

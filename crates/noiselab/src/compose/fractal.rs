@@ -454,6 +454,7 @@ impl<B: BatchLanes> Octaves<B> for Filled<'_, B> {
 const BLOCK: usize = 1 << 17;
 
 impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
+    crate::grid::batch_entry!(D);
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
         let v = self.combine(&AtPoint { noises: &self.octaves, p });
@@ -484,7 +485,10 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             let start = span.start + done;
             for (i, noise) in self.octaves.iter().enumerate() {
                 let octave = &mut buffers[i * stride..i * stride + len];
-                noise.fill_span::<B>(Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
+                // Through the octave's own clones, not inlined here: the
+                // kind's grid path is then compiled once per kind and level,
+                // not again in every fractal over it (one call per block).
+                noise.dispatch_span(B::LEVEL, Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
             }
             let part = Span { axes: span.axes, start, accuracy: span.accuracy };
             let filled = Filled { buffers: &buffers[..], stride, at: 0, amplitudes: &amplitudes[..] };
@@ -552,3 +556,6 @@ impl<N: NoiseGradient<D>, const D: usize> NoiseGradient<D> for Fractal<N> {
         (crate::kinds::finite_or_nan(p, d.v), g)
     }
 }
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

@@ -73,6 +73,7 @@ impl<N> Looped<N> {
 }
 
 impl<N: Noise<D>, const D: usize> Noise<D> for Looped<N> {
+    crate::grid::batch_entry!(D);
     #[inline(always)]
     fn sample<L: Lanes>(&self, mut p: [L; D]) -> L {
         let period = L::cst(self.length);
@@ -139,6 +140,7 @@ impl<N, W> Warp<N, W> {
 }
 
 impl<N: Noise<D>, W: Noise<D>, const D: usize> Noise<D> for Warp<N, W> {
+    crate::grid::batch_entry!(D);
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
         const { assert!(D <= 4, "domain warps are defined for 1 to 4 dimensions") };
@@ -167,3 +169,6 @@ impl<N: Noise<D>, W: Noise<D>, const D: usize> Noise<D> for Warp<N, W> {
         self.noise.sample(q)
     }
 }
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

@@ -289,6 +289,7 @@ impl<const D: usize> Lattice<D> for Classic {
 macro_rules! impl_classic {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Classic {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 lattice::sample(self, p)
@@ -301,6 +302,9 @@ macro_rules! impl_classic {
     )*};
 }
 impl_classic!(1, 2, 3);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();
 
 #[cfg(test)]
 mod tests {

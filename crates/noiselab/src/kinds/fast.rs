@@ -169,6 +169,7 @@ fn sin_cos_turns<L: Lanes>(x: L) -> (L, L) {
 }
 
 impl Noise<3> for Fast {
+    crate::grid::batch_entry!(3);
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; 3]) -> L {
         super::finite_or_nan(p, self.eval(p))
@@ -176,11 +177,15 @@ impl Noise<3> for Fast {
 }
 
 impl Noise<2> for Fast {
+    crate::grid::batch_entry!(2);
     #[inline(always)]
     fn sample<L: Lanes>(&self, [x, y]: [L; 2]) -> L {
         super::finite_or_nan([x, y], self.eval([x, y, L::cst(0.0)]))
     }
 }
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();
 
 #[cfg(test)]
 mod tests {

@@ -319,6 +319,7 @@ impl<const D: usize> Lattice<D> for Improved {
 macro_rules! impl_improved {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Improved {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 lattice::sample(self, p)
@@ -337,6 +338,9 @@ macro_rules! impl_improved {
     )*};
 }
 impl_improved!(1, 2, 3, 4);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();
 
 #[cfg(test)]
 mod tests {

@@ -237,6 +237,7 @@ modified_lattice!(ModifiedTexture);
 macro_rules! impl_modified {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Modified {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 lattice::sample(self, p)
@@ -247,6 +248,7 @@ macro_rules! impl_modified {
             }
         }
         impl Noise<$d> for ModifiedTexture {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 lattice::sample(self, p)
@@ -265,3 +267,6 @@ macro_rules! impl_modified {
     )*};
 }
 impl_modified!(1, 2, 3, 4);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

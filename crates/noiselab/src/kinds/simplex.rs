@@ -448,6 +448,7 @@ impl Simplex {
 macro_rules! impl_simplex {
     ($($d:literal => $corners:ident),*) => {$(
         impl Noise<$d> for Simplex {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 self.$corners(p).value()
@@ -468,6 +469,7 @@ impl_simplex!(1 => corners1, 4 => corners4);
 macro_rules! impl_simplex_tabled {
     ($($d:literal => $corners:ident),*) => {$(
         impl Noise<$d> for Simplex {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 self.$corners(p, &mut ChunkTable::empty()).value()
@@ -492,3 +494,6 @@ macro_rules! impl_simplex_tabled {
     )*};
 }
 impl_simplex_tabled!(2 => corners2, 3 => corners3);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

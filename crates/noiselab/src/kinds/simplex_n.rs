@@ -134,9 +134,13 @@ impl SimplexN {
 }
 
 impl<const D: usize> Noise<D> for SimplexN {
+    crate::grid::batch_entry!(D);
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
         const { assert!(D >= 1, "SimplexN needs at least one dimension") };
         self.eval(p, &mut SimplexCost::default())
     }
 }
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

@@ -94,6 +94,7 @@ impl<const D: usize> Lattice<D> for Value {
 macro_rules! impl_value {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Value {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 lattice::sample(self, p)
@@ -112,3 +113,6 @@ macro_rules! impl_value {
     )*};
 }
 impl_value!(1, 2, 3, 4);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

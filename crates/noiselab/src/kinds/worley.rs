@@ -7,7 +7,7 @@ use core::fmt;
 use alloc::vec::Vec;
 
 use super::{cell_range, Columns, Period, PeriodError};
-use crate::grid::{fill_pointwise, fill_span_at, row_lanes, store_prefix, RowPiece, Span};
+use crate::grid::{fill_pointwise, row_lanes, store_prefix, RowPiece, Span};
 use crate::hash::{fmix32, hash_cell};
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use crate::noise::Noise;
@@ -1090,6 +1090,7 @@ impl<L: Lanes, const D: usize> Found<L, D> {
 macro_rules! impl_worley {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Worley {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 let found = self.search::<L, $d>(p, self.output.needs());
@@ -1099,7 +1100,7 @@ macro_rules! impl_worley {
             /// The grid path, through its own driver ([`GridPath`]).
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
-                fill_span_at(B::LEVEL, &GridPath(*self), span, out)
+                GridPath(*self).dispatch_span(B::LEVEL, span, out)
             }
         }
     )*};
@@ -1116,6 +1117,7 @@ impl<const D: usize> Noise<D> for GridPath
 where
     Worley: Noise<D>,
 {
+    crate::grid::batch_entry!(D);
     #[inline(always)]
     fn sample<L: Lanes>(&self, p: [L; D]) -> L {
         self.0.sample(p)
@@ -1126,3 +1128,6 @@ where
         self.0.fill_span_grid::<B, D>(span, out)
     }
 }
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();

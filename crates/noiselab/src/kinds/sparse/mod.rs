@@ -566,6 +566,7 @@ impl Sparse {
 macro_rules! impl_sparse {
     ($($d:literal),*) => {$(
         impl Noise<$d> for Sparse {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 let (scale, offset) = self.output_scale($d);
@@ -576,6 +577,9 @@ macro_rules! impl_sparse {
     )*};
 }
 impl_sparse!(1, 2, 3, 4);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();
 
 #[cfg(test)]
 mod tests {

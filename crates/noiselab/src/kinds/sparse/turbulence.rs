@@ -64,6 +64,7 @@ impl SparseTurbulence {
 macro_rules! impl_turbulence {
     ($($d:literal),*) => {$(
         impl Noise<$d> for SparseTurbulence {
+            crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
                 let mut sum = L::cst(0.0);
@@ -77,3 +78,6 @@ macro_rules! impl_turbulence {
     )*};
 }
 impl_turbulence!(1, 2, 3, 4);
+
+// This module's batch drivers per instruction-set level (`grid::batch_clones!`).
+crate::grid::batch_clones!();
