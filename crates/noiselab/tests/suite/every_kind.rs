@@ -3,7 +3,6 @@
 //! documented range, and the special-input contract (NaN, ±∞, huge values).
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
-use noiselab::lanes::{F32x16, F32x8};
 use noiselab::hash::SplitMix64;
 use noiselab::{Accuracy, Axes, Span, Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
 
@@ -121,21 +120,24 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
             }
         }
     }
-    // Spans that start and end mid-row, as parallel chunks do, on both lane widths.
+    // Spans that start and end mid-row, as parallel chunks do, at every
+    // level, through the fills' own drivers (calling `fill_span` on lane
+    // types here compiled every kind's batch code once more: about a third
+    // of this test binary's machine code).
     let grid = Grid::new([-1.3; D], [0.03125; D], core::array::from_fn(|d| if d == 0 { 75 } else { 3 }));
     let axes = Axes::of(&grid);
-    for (start, len) in [(0, grid.len()), (7, 100), (74, 2), (76, 150), (grid.len() - 9, 9)] {
-        if start >= grid.len() {
-            continue;
-        }
-        let len = len.min(grid.len() - start);
-        let mut a = vec![0f32; len];
-        let mut b = vec![0f32; len];
-        noise.fill_span::<F32x8>(Span { axes: &axes, start, accuracy: Accuracy::Exact }, &mut a);
-        noise.fill_span::<F32x16>(Span { axes: &axes, start, accuracy: Accuracy::Exact }, &mut b);
-        for k in 0..len {
-            let s = noise.get_f32(grid.point(start + k));
-            assert!(same(s, a[k]) && same(s, b[k]), "{name} {D}D span {start}+{len}, point {}: scalar {s:e}, x8 {:e}, x16 {:e}", start + k, a[k], b[k]);
+    for level in SimdLevel::available() {
+        for (start, len) in [(0, grid.len()), (7, 100), (74, 2), (76, 150), (grid.len() - 9, 9)] {
+            if start >= grid.len() {
+                continue;
+            }
+            let len = len.min(grid.len() - start);
+            let mut out = vec![0f32; len];
+            noise.dispatch_span(level, Span { axes: &axes, start, accuracy: Accuracy::Exact }, &mut out);
+            for (k, &b) in out.iter().enumerate() {
+                let s = noise.get_f32(grid.point(start + k));
+                assert!(same(s, b), "{name} {D}D {level:?} span {start}+{len}, point {}: scalar {s:e}, batch {b:e}", start + k);
+            }
         }
     }
 }
