@@ -1097,37 +1097,14 @@ macro_rules! impl_worley {
                 super::finite_or_nan(p, self.output(&found))
             }
 
-            /// The grid path, through its own driver ([`GridPath`]).
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
-                GridPath(*self).dispatch_span(B::LEVEL, span, out)
+                self.fill_span_grid::<B, $d>(span, out)
             }
         }
     )*};
 }
 impl_worley!(1, 2, 3, 4);
-
-/// Cellular noise whose grid fill is [`Worley::fill_span_grid`]. Worley's
-/// own `fill_span` hands spans to this noise's batch driver, so the grid
-/// path (large: 3^D candidates) is compiled once per dimension and
-/// instruction set, not inlined into every noise that contains a Worley.
-struct GridPath(Worley);
-
-impl<const D: usize> Noise<D> for GridPath
-where
-    Worley: Noise<D>,
-{
-    crate::grid::batch_entry!(D);
-    #[inline(always)]
-    fn sample<L: Lanes>(&self, p: [L; D]) -> L {
-        self.0.sample(p)
-    }
-
-    #[inline(always)]
-    fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
-        self.0.fill_span_grid::<B, D>(span, out)
-    }
-}
 
 // This module's batch drivers per instruction-set level (`grid::batch_clones!`).
 crate::grid::batch_clones!();
