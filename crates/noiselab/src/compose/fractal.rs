@@ -62,6 +62,9 @@ impl FractalMode {
 /// Musgrave's hybrid offset.
 const HYBRID_OFFSET: f64 = 0.5;
 
+/// Relative slack of [`Fractal::band_limited`]'s two-samples-a-cell test.
+const BAND_SLACK: f64 = 0.01;
+
 /// Most octaves a fractal may have.
 pub const MAX_OCTAVES: u32 = 30;
 
@@ -187,30 +190,35 @@ pub struct Fractal<N> {
     octaves: Vec<N>,
     mode: FractalMode,
     steps: Steps,
+    band_limited: bool,
 }
 
 /// The octave loop's constants, formed once: octave i's frequency
 /// lacunarityⁱ and amplitude gainⁱ (each by repeated multiplication), and
-/// 1 / Σ gainⁱ.
+/// for each count k of leading octaves 1 / Σ_{i<k} gainⁱ, summed in octave
+/// order (so the first k octaves of a fractal are normalized exactly as a
+/// fractal of k octaves).
 #[derive(Clone, Debug)]
 struct Steps {
     frequency: [f64; MAX_OCTAVES as usize],
     amplitude: [f64; MAX_OCTAVES as usize],
-    scale: f64,
+    /// `scale[k − 1]`: the normalization of the first k octaves.
+    scale: [f64; MAX_OCTAVES as usize],
 }
 
 impl Steps {
     fn new(octaves: usize, lacunarity: f64, gain: f64) -> Steps {
-        let mut steps = Steps { frequency: [0.0; MAX_OCTAVES as usize], amplitude: [0.0; MAX_OCTAVES as usize], scale: 0.0 };
+        let none = [0.0; MAX_OCTAVES as usize];
+        let mut steps = Steps { frequency: none, amplitude: none, scale: none };
         let (mut frequency, mut amplitude, mut total) = (1.0, 1.0, 0.0);
         for i in 0..octaves {
             steps.frequency[i] = frequency;
             steps.amplitude[i] = amplitude;
             total += amplitude;
+            steps.scale[i] = 1.0 / total;
             frequency *= lacunarity;
             amplitude *= gain;
         }
-        steps.scale = 1.0 / total;
         steps
     }
 }
@@ -289,7 +297,51 @@ impl<N> Fractal<N> {
             return Err(ComposeError::Gain(gain));
         }
         let steps = Steps::new(octaves.len(), lacunarity, gain);
-        Ok(Fractal { octaves, mode, steps })
+        Ok(Fractal { octaves, mode, steps, band_limited: false })
+    }
+
+    /// Grid fills that follow Perlin's rule from the talk ("we continue
+    /// this sum until … the noise would fluctuate faster than about once
+    /// every two pixels"), as [`Fractal::octaves_for_footprint`] does when
+    /// choosing a count: a fill leaves out the octaves whose cells are
+    /// shorter than two grid steps along every axis of more than one
+    /// sample (octave i is kept while lacunarityⁱ · step ≤ ½ on some axis,
+    /// to within 1 % since grid coordinates are `f32`; octave 0 always is).
+    /// Finer octaves add only aliasing at that resolution, and cost the
+    /// most to fill.
+    ///
+    /// The kept octaves are normalized among themselves, so a band-limited
+    /// fill equals, bit for bit, the fill of the fractal of that many
+    /// octaves (same seeds, lacunarity and gain). The fill then depends on
+    /// the grid's spacing: point evaluation (`get`, `fill_points`, other
+    /// noises sampling this one) has no spacing and sums every octave.
+    pub fn band_limited(mut self) -> Fractal<N> {
+        self.band_limited = true;
+        self
+    }
+
+    /// Whether grid fills are [band-limited](Fractal::band_limited).
+    pub fn is_band_limited(&self) -> bool {
+        self.band_limited
+    }
+
+    /// How many leading octaves a grid fill over `axes` sums: all, or
+    /// those [band limiting](Fractal::band_limited) keeps at the axes'
+    /// smallest mean step (all of them where no axis has two samples).
+    fn octaves_for<const D: usize>(&self, axes: &Axes<D>) -> usize {
+        let all = self.octaves.len();
+        let step = (0..D)
+            .map(|d| axes.axis(d))
+            .filter(|a| a.len() >= 2)
+            .map(|a| libm::fabs((a[a.len() - 1] as f64 - a[0] as f64) / (a.len() - 1) as f64))
+            .filter(|s| s.is_finite() && *s > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        if !self.band_limited || step == f64::INFINITY {
+            return all;
+        }
+        // The slack absorbs f32 rounding of the coordinates: a step of
+        // exactly 1/32 far from the origin may measure a little above it.
+        1 + (1..all).take_while(|&i| self.steps.frequency[i] * step <= 0.5 * (1.0 + BAND_SLACK)).count()
     }
 
     /// Perlin's rule from the talk: stop before an octave would vary faster
@@ -318,16 +370,17 @@ impl<N> Fractal<N> {
     /// gives octave i's noise (value or value + gradient).
     #[inline(always)]
     fn combine<T: Arith>(&self, octaves: &impl Octaves<T>) -> T {
-        self.combine_as(self.mode, octaves)
+        self.combine_as(self.mode, self.octaves.len(), octaves)
     }
 
-    /// [`Fractal::combine`] in `mode` (a constant where the caller
-    /// dispatches on the mode once, so the loop has no branch on it).
+    /// [`Fractal::combine`] over the first `count` octaves, in `mode` (a
+    /// constant where the caller dispatches on the mode once, so the loop
+    /// has no branch on it).
     #[inline(always)]
-    fn combine_as<T: Arith>(&self, mode: FractalMode, octaves: &impl Octaves<T>) -> T {
+    fn combine_as<T: Arith>(&self, mode: FractalMode, count: usize, octaves: &impl Octaves<T>) -> T {
         let mut sum = T::cst(0.0);
         let mut weight = T::cst(1.0);
-        for i in 0..self.octaves.len() {
+        for i in 0..count {
             let amplitude = octaves.amplitude(i, self.steps.amplitude[i]);
             let n = octaves.octave(i, self.steps.frequency[i]);
             let term = match mode {
@@ -357,7 +410,7 @@ impl<N> Fractal<N> {
             };
             sum = sum.add(term.scale_by(amplitude));
         }
-        sum.scale(self.steps.scale)
+        sum.scale(self.steps.scale[count - 1])
     }
 }
 
@@ -430,6 +483,8 @@ struct Filled<'a, B> {
     buffers: &'a [f32],
     stride: usize,
     at: usize,
+    /// Octaves filled (the leading ones).
+    count: usize,
     amplitudes: &'a [B],
 }
 
@@ -464,26 +519,29 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
     /// Octave by octave: each octave fills the block through its own grid
     /// path at the scaled coordinates (the same `f32` products a point
     /// evaluation forms), then the octave loop combines the values, point
-    /// by point in the same order: the bits of [`Noise::get_f32`].
+    /// by point in the same order: the bits of [`Noise::get_f32`] (of the
+    /// kept octaves' fractal where [band-limited](Fractal::band_limited)).
     #[inline(always)]
     fn fill_span<B: BatchLanes>(&self, span: Span<'_, D>, out: &mut [f32]) {
         let w = B::WIDTH;
         let nx = span.axes.size(0).max(1);
-        let scaled: Vec<Axes<D>> = self.steps.frequency[..self.octaves.len()].iter().map(|&f| span.axes.scaled(f as f32)).collect();
+        // From the whole grid's axes, so every span (and thread) agrees.
+        let count = self.octaves_for(span.axes);
+        let scaled: Vec<Axes<D>> = self.steps.frequency[..count].iter().map(|&f| span.axes.scaled(f as f32)).collect();
         // Whole rows per block where rows are short, so octaves see whole rows.
         let block = if nx < BLOCK { BLOCK / nx * nx } else { BLOCK };
         // Octave i's values from i · stride (a buffer kept by the thread).
         let stride = block + w;
-        let mut buffers = crate::scratch::take(self.octaves.len() * stride);
+        let mut buffers = crate::scratch::take(count * stride);
         let mut amplitudes = [B::cst(0.0); MAX_OCTAVES as usize];
-        for (lanes, &a) in amplitudes.iter_mut().zip(&self.steps.amplitude).take(self.octaves.len()) {
+        for (lanes, &a) in amplitudes.iter_mut().zip(&self.steps.amplitude).take(count) {
             *lanes = B::cst(a);
         }
         let mut done = 0;
         while done < out.len() {
             let len = block.min(out.len() - done);
             let start = span.start + done;
-            for (i, noise) in self.octaves.iter().enumerate() {
+            for (i, noise) in self.octaves[..count].iter().enumerate() {
                 let octave = &mut buffers[i * stride..i * stride + len];
                 // Through the octave's own clones, not inlined here: the
                 // kind's grid path is then compiled once per kind and level,
@@ -491,7 +549,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                 noise.dispatch_span(B::LEVEL, Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
             }
             let part = Span { axes: span.axes, start, accuracy: span.accuracy };
-            let filled = Filled { buffers: &buffers[..], stride, at: 0, amplitudes: &amplitudes[..] };
+            let filled = Filled { buffers: &buffers[..], stride, at: 0, count, amplitudes: &amplitudes[..] };
             let out = &mut out[done..done + len];
             // The mode dispatched once per block.
             match self.mode {
@@ -525,7 +583,7 @@ impl<N> Fractal<N> {
                 let at = offset + k;
                 p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
                 // NaN where any coordinate is not finite, as point evaluation.
-                let v = crate::kinds::finite_or_nan(p, self.combine_as(mode, &Filled { at, ..filled }));
+                let v = crate::kinds::finite_or_nan(p, self.combine_as(mode, filled.count, &Filled { at, ..filled }));
                 let count = (n - k).min(w);
                 store_prefix(v, &mut out[at..at + count]);
                 k += w;

@@ -112,6 +112,51 @@ fn octaves_follow_the_pixel_footprint() {
     assert_eq!(Fractal::<Improved>::octaves_for_footprint(f64::NAN, 2.0), 1);
 }
 
+/// A band-limited grid fill is, bit for bit, the fill of the fractal of the
+/// octaves Perlin's rule keeps at the grid's step (the count
+/// `octaves_for_footprint` gives), in every mode; points keep every octave.
+#[test]
+fn band_limited_fills_are_the_fractal_of_the_octaves_a_grid_resolves() {
+    // (lacunarity, gain, origin, steps, sizes, octaves kept of 6)
+    let cases = [
+        (2.0, 0.5, [0.0, 0.0], [1.0 / 32.0; 2], [256, 64], 5),
+        (2.0, 0.5, [-3.3, 1.7], [0.1; 2], [90, 70], 3),
+        (2.5, 0.4, [0.25, -8.0], [0.05; 2], [120, 33], 3),
+        // The finer axis decides; an axis of one sample has no step.
+        (2.0, 0.5, [1.0, 2.0], [0.3, 0.01], [40, 50], 6),
+        (2.0, 0.5, [1.0, 2.0], [0.2, 7.0], [300, 1], 2),
+        // Past the 512² threshold, so the parallel fill splits it.
+        (2.0, 0.5, [5.5, -0.5], [1.0 / 16.0; 2], [600, 600], 4),
+        // Far from the origin, f32 coordinates blur a step of exactly
+        // 1/32 (2 samples a cell at octave 4): still kept.
+        (2.0, 0.5, [1000.37, -0.1], [1.0 / 32.0; 2], [3, 2], 5),
+    ];
+    for (lacunarity, gain, origin, step, size, kept) in cases {
+        let grid = Grid::new(origin, step, size);
+        let footprint = step.iter().zip(size).filter(|&(_, n)| n >= 2).map(|(s, _)| *s).fold(f64::INFINITY, f64::min);
+        assert_eq!(Fractal::<Improved>::octaves_for_footprint(footprint, lacunarity).min(6), kept, "{step:?}");
+        for mode in FractalMode::ALL {
+            let make = |octaves| Fractal::with(|o| Improved::new(o.seed), 11, octaves, mode, lacunarity, gain).unwrap();
+            let limited = make(6).band_limited();
+            assert!(limited.is_band_limited() && !make(6).is_band_limited());
+            let (mut got, mut want) = (vec![f32::NAN; grid.len()], vec![f32::NAN; grid.len()]);
+            limited.fill_grid(&grid, &mut got).unwrap();
+            make(kept).fill_grid(&grid, &mut want).unwrap();
+            let same = got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "{mode:?} {step:?}: not the {kept}-octave fractal's fill");
+            let p = grid.point(size[0] / 2);
+            assert_eq!(limited.get_f32(p).to_bits(), make(6).get_f32(p).to_bits(), "{mode:?}: points keep every octave");
+        }
+    }
+    // One sample: no step to judge by, so every octave is summed.
+    let point = Grid::new([0.3, 0.4], [0.5; 2], [1, 1]);
+    let fbm = Fractal::new(|o| Improved::new(o.seed), 3, 6, FractalMode::Fbm).unwrap();
+    let (mut a, mut b) = ([0f32], [0f32]);
+    fbm.clone().band_limited().fill_grid(&point, &mut a).unwrap();
+    fbm.fill_grid(&point, &mut b).unwrap();
+    assert_eq!(a[0].to_bits(), b[0].to_bits());
+}
+
 #[test]
 fn fractals_over_run_time_noises_equal_the_static_ones() {
     let boxed = Fractal::new(|o| Box::new(Improved::new(o.seed)) as Box<dyn noiselab::DynNoise<3>>, 2, 4, FractalMode::Ridged).unwrap();
