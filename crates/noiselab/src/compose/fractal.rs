@@ -330,13 +330,16 @@ impl<N> Fractal<N> {
     /// smallest mean step (all of them where no axis has two samples).
     fn octaves_for<const D: usize>(&self, axes: &Axes<D>) -> usize {
         let all = self.octaves.len();
+        if !self.band_limited {
+            return all;
+        }
         let step = (0..D)
             .map(|d| axes.axis(d))
             .filter(|a| a.len() >= 2)
             .map(|a| libm::fabs((a[a.len() - 1] as f64 - a[0] as f64) / (a.len() - 1) as f64))
             .filter(|s| s.is_finite() && *s > 0.0)
             .fold(f64::INFINITY, f64::min);
-        if !self.band_limited || step == f64::INFINITY {
+        if step == f64::INFINITY {
             return all;
         }
         // The slack absorbs f32 rounding of the coordinates: a step of
