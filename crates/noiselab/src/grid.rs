@@ -90,13 +90,25 @@ impl<const D: usize> Grid<D> {
     /// The `f32` coordinates along axis `d`: [`Grid::coord`] of each index,
     /// rounded.
     pub fn axis_coords(&self, d: usize) -> Vec<f32> {
+        let mut coords = alloc::vec![0.0; self.size[d]];
+        self.write_axis(d, &mut coords);
+        coords
+    }
+
+    /// [`Grid::axis_coords`] into `out` (its length the axis's size).
+    fn write_axis(&self, d: usize, out: &mut [f32]) {
         let (origin, step) = (self.origin[d], self.step[d]);
         // Counting in `i32` where it fits: its conversion to `f64` vectorises
         // at the baseline instruction set, `usize`'s does not. Both are exact,
         // so the coordinates are `coord`'s.
-        match i32::try_from(self.size[d]) {
-            Ok(n) => (0..n).map(|i| (origin + f64::from(i) * step) as f32).collect(),
-            Err(_) => (0..self.size[d]).map(|i| self.coord(d, i) as f32).collect(),
+        if i32::try_from(out.len()).is_ok() {
+            for (i, c) in (0..).zip(out.iter_mut()) {
+                *c = (origin + f64::from(i) * step) as f32;
+            }
+        } else {
+            for (i, c) in out.iter_mut().enumerate() {
+                *c = self.coord(d, i) as f32;
+            }
         }
     }
 
@@ -133,36 +145,83 @@ pub enum Accuracy {
 /// `(axes[0][i₀], axes[1][i₁], …)`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axes<const D: usize> {
-    coords: [Vec<f32>; D],
+    /// Every axis's coordinates, axis after axis: one buffer, taken from
+    /// the thread's scratch pool by the grid fills (a 32² tile's fill
+    /// allocated one vector per axis, and a fractal's one per axis and
+    /// octave).
+    coords: Vec<f32>,
+    /// Where each axis ends in `coords`.
+    ends: [usize; D],
 }
 
 impl<const D: usize> Axes<D> {
     /// The axes of `grid`.
     pub fn of(grid: &Grid<D>) -> Self {
-        Axes { coords: core::array::from_fn(|d| grid.axis_coords(d)) }
+        let mut axes = Self::room(grid.size);
+        for d in 0..D {
+            let (start, end) = axes.bounds(d);
+            grid.write_axis(d, &mut axes.coords[start..end]);
+        }
+        axes
     }
 
     /// Axes given coordinate by coordinate.
     pub fn new(coords: [Vec<f32>; D]) -> Self {
-        Axes { coords }
+        let mut axes = Self::room(core::array::from_fn(|d| coords[d].len()));
+        for (d, c) in coords.iter().enumerate() {
+            let (start, end) = axes.bounds(d);
+            axes.coords[start..end].copy_from_slice(c);
+        }
+        axes
+    }
+
+    /// Axes of `sizes` points (contents unspecified), in a scratch buffer.
+    fn room(sizes: [usize; D]) -> Self {
+        let mut ends = [0; D];
+        let mut total = 0usize;
+        for (end, size) in ends.iter_mut().zip(sizes) {
+            total = total.checked_add(size).expect("axes too long to hold");
+            *end = total;
+        }
+        let mut coords = crate::scratch::take(total);
+        coords.truncate(total);
+        Axes { coords, ends }
+    }
+
+    /// Where axis `d` starts and ends in the buffer.
+    #[inline(always)]
+    fn bounds(&self, d: usize) -> (usize, usize) {
+        (if d == 0 { 0 } else { self.ends[d - 1] }, self.ends[d])
+    }
+
+    /// Give the buffer back to the thread's scratch pool.
+    pub(crate) fn recycle(self) {
+        crate::scratch::give_back(self.coords);
     }
 
     /// The coordinates along `axis`.
     #[inline(always)]
     pub fn axis(&self, axis: usize) -> &[f32] {
-        &self.coords[axis]
+        let (start, end) = self.bounds(axis);
+        &self.coords[start..end]
     }
 
     /// Points along `axis`.
     #[inline(always)]
     pub fn size(&self, axis: usize) -> usize {
-        self.coords[axis].len()
+        let (start, end) = self.bounds(axis);
+        end - start
     }
 
     /// Every coordinate multiplied by `factor` in `f32` (`c * factor` per
     /// coordinate, as a point evaluation of `p * factor` rounds it).
     pub fn scaled(&self, factor: f32) -> Self {
-        Axes { coords: core::array::from_fn(|d| self.coords[d].iter().map(|&c| c * factor).collect()) }
+        let mut coords = crate::scratch::take(self.coords.len());
+        coords.truncate(self.coords.len());
+        for (to, &c) in coords.iter_mut().zip(&self.coords) {
+            *to = c * factor;
+        }
+        Axes { coords, ends: self.ends }
     }
 
     /// The indices along axes 1.. of row `row` (axis 0 varies within a row).
@@ -170,7 +229,7 @@ impl<const D: usize> Axes<D> {
     pub fn row_indices(&self, mut row: usize) -> [usize; D] {
         let mut idx = [0usize; D];
         for d in 1..D {
-            let n = self.coords[d].len();
+            let n = self.size(d);
             idx[d] = row % n;
             row /= n;
         }
@@ -431,6 +490,7 @@ pub fn fill_grid_at<N: Noise<D>, const D: usize>(
     }
     let axes = Axes::of(grid);
     fill_axes_at(level, noise, &axes, out, accuracy);
+    axes.recycle();
     Ok(())
 }
 

@@ -13,10 +13,12 @@
 
 use alloc::vec::Vec;
 
-/// Most buffers a thread keeps: a lattice fill holds four at once, and a
-/// fractal of lattice noise one more (deeper nesting allocates past these).
+/// Most buffers a thread keeps: a grid fill holds its axes and a lattice
+/// fill four tables at once; a fractal adds its octave values and each
+/// octave's axes (six octaves of lattice noise: twelve). Deeper nesting
+/// allocates past these.
 #[cfg(feature = "std")]
-const KEPT: usize = 8;
+const KEPT: usize = 16;
 
 /// Most values a thread's pool holds in all (32 MiB), so memory stays
 /// bounded however large a fill once was: a fill whose buffers exceed it

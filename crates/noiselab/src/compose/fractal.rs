@@ -530,6 +530,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         let nx = span.axes.size(0).max(1);
         // From the whole grid's axes, so every span (and thread) agrees.
         let count = self.octaves_for(span.axes);
+        // Each kept octave's axes (scratch buffers, given back below).
         let scaled: Vec<Axes<D>> = self.steps.frequency[..count].iter().map(|&f| span.axes.scaled(f as f32)).collect();
         // Whole rows per block where rows are short, so octaves see whole rows.
         let block = if nx < BLOCK { BLOCK / nx * nx } else { BLOCK };
@@ -565,6 +566,9 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             done += len;
         }
         crate::scratch::give_back(buffers);
+        for axes in scaled {
+            axes.recycle();
+        }
     }
 }
 

@@ -444,14 +444,82 @@ impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     }
 }
 
-/// `len` zeros, allocated without `alloc_zeroed`: glibc's `calloc` skips
-/// its per-thread cache (probe, 32² tiles of 2D improved on AVX2: the
-/// three axis vectors took about 750 instructions each through it, 3.1 M
-/// of a 4096-tile round's 64.5 M).
-fn zeros<T: Copy + Default>(len: usize) -> Vec<T> {
-    let mut v = Vec::with_capacity(len);
+/// `v` as `len` zeros, in the room it already has.
+fn zeros<T: Copy + Default>(v: &mut Vec<T>, len: usize) -> &mut Vec<T> {
+    v.clear();
     v.resize(len, T::default());
     v
+}
+
+/// A lattice fill's vectors, kept by each thread between calls: a 32²
+/// tile's fill allocated and freed ten of them, a fifth of its
+/// instructions with the scratch tables' zeroing (probe, 2D improved on
+/// AVX2). Taken whole, so a fill nested inside another finds none kept and
+/// allocates its own.
+#[derive(Default)]
+struct Tables {
+    /// Axis 0 by column: cell, position and fade.
+    cell0: Vec<i32>,
+    frac0: Vec<f32>,
+    fade0: Vec<f32>,
+    /// Runs of columns in one cell, and the chunks they are written in.
+    runs: Vec<(usize, usize, usize)>,
+    chunks: Vec<Chunk>,
+    chunk_axis: Vec<ChunkAxis>,
+    /// Short runs: each aligned chunk's cells.
+    span_of: Vec<ChunkCells>,
+    /// Flat kinds: the rows waiting in a [`Band`].
+    plane_rows: Vec<(usize, [f32; 4])>,
+    /// [`fill_bands`]: each chunk's band coefficients, and the band's rows.
+    band_coef: Vec<f32>,
+    band_rows: Vec<(usize, f32, f32)>,
+}
+
+#[cfg(feature = "std")]
+std::thread_local! {
+    static KEPT_TABLES: core::cell::Cell<Tables> = core::cell::Cell::new(Tables::default());
+}
+
+impl Tables {
+    /// Most bytes a thread keeps (about 35,000 columns' worth): a fill of
+    /// longer rows allocates per call, a small cost beside its work.
+    #[cfg(feature = "std")]
+    const KEPT_BYTES: usize = 1 << 20;
+
+    /// This thread's kept vectors (empty the first time).
+    #[cfg(feature = "std")]
+    fn take() -> Self {
+        KEPT_TABLES.with(core::cell::Cell::take)
+    }
+
+    /// Keep the vectors for this thread's next fill, within the bound.
+    #[cfg(feature = "std")]
+    fn keep(self) {
+        fn bytes<T>(v: &Vec<T>) -> usize {
+            v.capacity() * core::mem::size_of::<T>()
+        }
+        let held = bytes(&self.cell0)
+            + bytes(&self.frac0)
+            + bytes(&self.fade0)
+            + bytes(&self.runs)
+            + bytes(&self.chunks)
+            + bytes(&self.chunk_axis)
+            + bytes(&self.span_of)
+            + bytes(&self.plane_rows)
+            + bytes(&self.band_coef)
+            + bytes(&self.band_rows);
+        if held <= Self::KEPT_BYTES {
+            KEPT_TABLES.with(|kept| kept.set(self));
+        }
+    }
+
+    /// Without `std` there are no thread-locals: each fill allocates.
+    #[cfg(not(feature = "std"))]
+    fn take() -> Self {
+        Self::default()
+    }
+    #[cfg(not(feature = "std"))]
+    fn keep(self) {}
 }
 
 /// How many runs of equal cells the columns have.
@@ -463,8 +531,9 @@ fn run_count(cells: &[i32]) -> usize {
 /// Runs of equal cells among columns (`count` of them, from [`run_count`]),
 /// as (start, end, cell − `min_cell`); whole lanes of one cell are passed
 /// over at once.
-fn cell_runs(cells: &[i32], min_cell: i32, w: usize, count: usize) -> Vec<(usize, usize, usize)> {
-    let mut runs = Vec::with_capacity(count);
+fn cell_runs(cells: &[i32], min_cell: i32, w: usize, count: usize, runs: &mut Vec<(usize, usize, usize)>) {
+    runs.clear();
+    runs.reserve(count);
     let mut start = 0;
     while start < cells.len() {
         let cell = cells[start];
@@ -479,7 +548,6 @@ fn cell_runs(cells: &[i32], min_cell: i32, w: usize, count: usize) -> Vec<(usize
         runs.push((start, end, (cell as i64 - min_cell as i64) as usize));
         start = end;
     }
-    runs
 }
 
 /// A chunk of columns' cells: the smallest and largest, and whether they are
@@ -628,6 +696,20 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     span: Span<'_, D>,
     out: &mut [f32],
 ) {
+    let mut tables = Tables::take();
+    fill_span_with::<K, B, D>(kind, span, out, &mut tables);
+    tables.keep();
+}
+
+/// [`fill_span`] with the thread's kept vectors.
+#[inline(always)]
+fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    span: Span<'_, D>,
+    out: &mut [f32],
+    tables: &mut Tables,
+) {
+    let Tables { cell0, frac0, fade0, runs, chunks, chunk_axis, span_of, plane_rows, band_coef, band_rows } = tables;
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
     let nx = xs.len();
@@ -640,7 +722,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     // Axis 0 once per span: cell, position and fade of each column.
     let cols = hi - lo;
     let padded = cols.div_ceil(w) * w + w;
-    let (mut cell0, mut frac0, mut fade0) = (zeros::<i32>(padded), zeros::<f32>(padded), zeros::<f32>(padded));
+    let (cell0, frac0, fade0) = (zeros(cell0, padded), zeros(frac0, padded), zeros(fade0, padded));
     let mut k = 0;
     while k < cols {
         let x = if k + w <= cols {
@@ -700,7 +782,10 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         && (ncell + 1) * PointRows::<D>::PER_PLANE * K::BOUND.total() <= BATCH_POINT_FIELDS
         && whole_rows;
     // Runs of columns in one cell, as (start, end, cell), where they are used.
-    let runs = if long_runs { cell_runs(&cell0[..cols], min_cell, w, run_total) } else { Vec::new() };
+    runs.clear();
+    if long_runs {
+        cell_runs(&cell0[..cols], min_cell, w, run_total, runs);
+    }
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
     let room = points + 3 * w;
@@ -716,10 +801,12 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     // Sized up front, as `runs` is: grown by pushes, the three were three
     // of a 32² tile's eight allocations and a fifth of its time (probe).
     let chunk_total = cols.div_ceil(w) + runs.len();
-    let mut chunks: Vec<Chunk> = Vec::with_capacity(if long_runs { chunk_total } else { 0 });
-    let mut chunk_axis: Vec<ChunkAxis> = Vec::with_capacity(chunk_total);
+    chunks.clear();
+    chunk_axis.clear();
+    chunks.reserve(if long_runs { chunk_total } else { 0 });
+    chunk_axis.reserve(chunk_total);
     if long_runs {
-        for &(start, end, cell) in &runs {
+        for &(start, end, cell) in runs.iter() {
             for s in (start..end).step_by(w) {
                 chunks.push(Chunk { start: s, end, cell });
                 let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
@@ -731,9 +818,10 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     }
     if batches || bands {
         if bands {
-            fill_bands::<K, B, D>(kind, span, out, (&chunks, &chunk_axis), &mut point_rows, (min_cell, points));
+            let rows = (band_coef, band_rows);
+            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), rows);
         } else {
-            fill_row_batches::<K, B, D>(kind, span, out, (&chunks, &chunk_axis), &mut point_rows, min_cell, points);
+            fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, min_cell, points);
         }
         for table in [point_rows.records, bound, coef, blends] {
             table.recycle();
@@ -745,7 +833,10 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         *c = if j < cols { (*c).wrapping_sub(min_cell) } else { 0 };
     }
     // Each aligned chunk of columns' cells, for the per-lane path.
-    let span_of: Vec<ChunkCells> = if long_runs { Vec::new() } else { cell0[..cols].chunks(w).map(chunk_cells).collect() };
+    span_of.clear();
+    if !long_runs {
+        span_of.extend(cell0[..cols].chunks(w).map(chunk_cells));
+    }
     // Whole rows whose chunks all reach their cells one way (a regular
     // grid finer than its lanes: one cell per column, or a few) run a loop
     // that knows it, with their positions and fades stored by chunk.
@@ -758,9 +849,10 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
             chunk_axis.push(a);
         }
     }
+    let (chunks, chunk_axis, span_of) = (&chunks[..], &chunk_axis[..], &span_of[..]);
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
-    let mut band = Band { columns: (0, 0), rows: Vec::new() };
+    let mut band = Band { columns: (0, 0), rows: core::mem::take(plane_rows) };
 
     for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         // Axes 1..: the same for the whole row.
@@ -791,7 +883,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 band.columns = columns;
             }
             if new_plane {
-                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
+                for (ch, axis) in chunks.iter().zip(chunk_axis) {
                     let rec = OneCell::new(&bound, ch.cell, bound_fields);
                     plane_blends(kind, axis.lanes::<B>(), &rec, &mut blends, ch.start);
                 }
@@ -832,28 +924,28 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
         // The points: for each run of columns in one cell, whole lanes.
         // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
         // end are overwritten by the next run or row, or not stored.
-        let row = Row { frac: &frac0, fade: &fade0, weights, off_line: (1..D).any(|d| f[d] != 0.0) };
+        let row = Row { frac: frac0, fade: fade0, weights, off_line: (1..D).any(|d| f[d] != 0.0) };
         let row_end = i0 + n - lo;
         let (a0, a1) = (i0 - lo, row_end);
         let whole = a0 == 0 && a1 == cols;
         match (long_runs, fast) {
             // Whole rows: every chunk, written where it starts.
             (true, false) if whole => {
-                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
+                for (ch, axis) in chunks.iter().zip(chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
                     let v = row.exact_at(kind, x, fade, &OneCell::new(records, ch.cell, bound_fields));
                     emit(v, &mut out[o0 + ch.start..]);
                 }
             }
             (true, true) if whole => {
-                for (ch, axis) in chunks.iter().zip(&chunk_axis) {
+                for (ch, axis) in chunks.iter().zip(chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
                     emit(poly_at::<K, B, D>(x, fade, &OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() }), &mut out[o0 + ch.start..]);
                 }
             }
             // Part of a row: chunks clipped to it.
             (true, false) => {
-                for ch in &chunks {
+                for ch in chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
                         let rec = OneCell::new(records, ch.cell, bound_fields);
@@ -862,7 +954,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 }
             }
             (true, true) => {
-                for ch in &chunks {
+                for ch in chunks {
                     let s = ch.start.max(a0);
                     if s < ch.end.min(a1) {
                         let coef = OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() };
@@ -876,14 +968,14 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
                 let view = records.entries(bound_fields, 0, records.stride());
                 match reach {
                     Some(Reach::Consecutive) if whole => {
-                        for (k, (cells, axis)) in span_of.iter().zip(&chunk_axis).enumerate() {
+                        for (k, (cells, axis)) in span_of.iter().zip(chunk_axis).enumerate() {
                             let (x, fade) = axis.lanes::<B>();
                             let v = row.exact_at(kind, x, fade, &At { entries: &view, at: cells.first });
                             emit(v, &mut out[o0 + k * w..]);
                         }
                     }
                     Some(Reach::Near) if whole => {
-                        for (k, (cells, axis)) in span_of.iter().zip(&chunk_axis).enumerate() {
+                        for (k, (cells, axis)) in span_of.iter().zip(chunk_axis).enumerate() {
                             let (x, fade) = axis.lanes::<B>();
                             let lane = B::load_int(&cell0[k * w..]).sub(B::Int::splat(cells.first as i32));
                             let rec = PerLane::<B, true> { entries: &view, first: cells.first, lane: [lane, lane.add_c(1)] };
@@ -917,6 +1009,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     if by_plane {
         band.write::<K, B, D>(kind, &blends, out);
     }
+    *plane_rows = band.rows;
     for table in [point_rows.records, bound, coef, blends] {
         table.recycle();
     }
@@ -1092,6 +1185,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     point_rows: &mut PointRows<D>,
     (min_cell, points): (i32, usize),
+    (coef, band): (&mut Vec<f32>, &mut Vec<(usize, f32, f32)>),
 ) {
     let nx = span.axes.size(0);
     let w = B::WIDTH;
@@ -1103,9 +1197,9 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // Each cell's four half-blends, four coefficients each.
     let mut halves = Columns::new(16, room);
     // Each chunk's band coefficients, chunk by chunk.
-    let mut coef: Vec<f32> = zeros(chunks.len() * 4 * w);
+    let coef = zeros(coef, chunks.len() * 4 * w);
     // The band's rows: start in the output, position and fade on axis 1.
-    let mut band: Vec<(usize, f32, f32)> = Vec::with_capacity(span.axes.size(1));
+    band.clear();
     let mut rows_of_span = span
         .rows(out.len())
         .map(|RowPiece { idx, offset, .. }| {
@@ -1175,7 +1269,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
         // Row by row, so that the stores stream: down the columns, each
         // store missed the cache (2D at 1/32: 0.93 ns/point against 0.65).
-        for &(at, v, s) in &band {
+        for &(at, v, s) in band.iter() {
             let (v, s) = (B::splat(v), B::splat(s));
             let row = &mut out[at..at + nx];
             for (ch, c) in chunks.iter().zip(coef.chunks_exact(4 * w)) {
