@@ -849,7 +849,11 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             chunk_axis.push(a);
         }
     }
+    // Slices from here on: reached through the kept vectors' headers, their
+    // pointers and lengths were loaded again after stores (probe, 2D
+    // 6-octave fBm: 2.6 % more instructions than with fresh vectors).
     let (chunks, chunk_axis, span_of) = (&chunks[..], &chunk_axis[..], &span_of[..]);
+    let (cell0, frac0, fade0) = (&cell0[..], &frac0[..], &fade0[..]);
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     let mut band = Band { columns: (0, 0), rows: core::mem::take(plane_rows) };
