@@ -529,8 +529,8 @@ fn run_count(cells: &[i32]) -> usize {
 }
 
 /// Runs of equal cells among columns (`count` of them, from [`run_count`]),
-/// as (start, end, cell − `min_cell`); whole lanes of one cell are passed
-/// over at once.
+/// as (start, end, cell − `min_cell`), into `runs` (replacing what it
+/// held); whole lanes of one cell are passed over at once.
 fn cell_runs(cells: &[i32], min_cell: i32, w: usize, count: usize, runs: &mut Vec<(usize, usize, usize)>) {
     runs.clear();
     runs.reserve(count);
@@ -782,9 +782,10 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         && (ncell + 1) * PointRows::<D>::PER_PLANE * K::BOUND.total() <= BATCH_POINT_FIELDS
         && whole_rows;
     // Runs of columns in one cell, as (start, end, cell), where they are used.
-    runs.clear();
     if long_runs {
         cell_runs(&cell0[..cols], min_cell, w, run_total, runs);
+    } else {
+        runs.clear();
     }
     // Lattice points along axis 0: the cells' lower corners and one more.
     let points = ncell + 1;
@@ -798,8 +799,8 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     let mut coef = Columns::new(if fast && !bands { 4 } else { 0 }, room);
     // By plane: the plane's blends along axis 0, by column.
     let mut blends = Columns::new(if by_plane { rows } else { 0 }, padded);
-    // Sized up front, as `runs` is: grown by pushes, the three were three
-    // of a 32² tile's eight allocations and a fifth of its time (probe).
+    // Sized up front, as `runs` is, so that a thread's first fill grows
+    // each kept vector once rather than push by push.
     let chunk_total = cols.div_ceil(w) + runs.len();
     chunks.clear();
     chunk_axis.clear();
