@@ -306,18 +306,24 @@ fn bind_plane<K: Lattice<D>, B: BatchLanes, const D: usize>(
     bound: &mut Columns,
     points: usize,
 ) {
+    let rows = PointRows::<D>::PER_PLANE;
     let whole_lanes = points.div_ceil(B::WIDTH) * B::WIDTH;
-    for (r, &slot) in slot_of.iter().enumerate().take(PointRows::<D>::PER_PLANE) {
-        let (from, to) = (slot * K::HASHED.total(), r * K::BOUND.total());
-        let offset = offsets(f, 2 * r);
-        let hashed = hashed.entries(from + K::HASHED.total(), 0, whole_lanes);
-        let mut row = bound.entries_mut(to + K::BOUND.total(), 0, whole_lanes);
-        let mut v = 0;
-        while v < points {
-            let point = At { entries: &hashed, at: v }.record(from, 0, K::HASHED);
-            store_record(&mut row, to, v, &kind.bind(point, offset), K::BOUND);
-            v += B::WIDTH;
+    // One view of every slot and one of every bound row, checked once.
+    let hashed = hashed.entries(2 * rows * K::HASHED.total(), 0, whole_lanes);
+    let mut bound = bound.entries_mut(rows * K::BOUND.total(), 0, whole_lanes);
+    let mut offset_of = [[B::cst(0.0); D]; MAX_CORNERS / 2];
+    for (r, o) in offset_of.iter_mut().enumerate().take(rows) {
+        *o = offsets(f, 2 * r);
+    }
+    // (`v + WIDTH ≤ whole_lanes`, not `v < points`: the same lanes, in
+    // terms that let the views' checks fold.)
+    let mut v = 0;
+    while v + B::WIDTH <= whole_lanes {
+        for (r, &slot) in slot_of.iter().enumerate().take(rows) {
+            let point = At { entries: &hashed, at: v }.record(slot * K::HASHED.total(), 0, K::HASHED);
+            store_record(&mut bound, r * K::BOUND.total(), v, &kind.bind(point, offset_of[r]), K::BOUND);
         }
+        v += B::WIDTH;
     }
 }
 
@@ -810,7 +816,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         for &(start, end, cell) in runs.iter() {
             for s in (start..end).step_by(w) {
                 chunks.push(Chunk { start: s, end, cell });
-                let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
+                let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16], lane: [0; 16], first: cell };
                 a.x[..w].copy_from_slice(&frac0[s..s + w]);
                 a.fade[..w].copy_from_slice(&fade0[s..s + w]);
                 chunk_axis.push(a);
@@ -840,15 +846,25 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     }
     // Whole rows whose chunks all reach their cells one way (a regular
     // grid finer than its lanes: one cell per column, or a few) run a loop
-    // that knows it, with their positions and fades stored by chunk.
+    // that knows it ([`fill_fine_rows`]), with each chunk's positions,
+    // fades and lanes' cells stored with it.
     let reach = span_of.iter().map(|c| Some(c.reach(w))).reduce(|a, b| if a == b { a } else { None }).flatten();
-    if !long_runs {
-        for s in (0..cols).step_by(w) {
-            let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16] };
+    if !long_runs && whole_rows && matches!(reach, Some(Reach::Consecutive | Reach::Near)) {
+        for (s, cells) in (0..cols).step_by(w).zip(span_of.iter()) {
+            let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16], lane: [0; 16], first: cells.first };
             a.x[..w].copy_from_slice(&frac0[s..s + w]);
             a.fade[..w].copy_from_slice(&fade0[s..s + w]);
+            for (l, &c) in a.lane.iter_mut().zip(&cell0[s..s + w]) {
+                *l = c - cells.first as i32;
+            }
             chunk_axis.push(a);
         }
+        let near = reach == Some(Reach::Near);
+        fill_fine_rows::<K, B, D>(kind, span, out, chunk_axis, (&mut point_rows, &mut bound), (min_cell, points), near);
+        for table in [point_rows.records, bound, coef, blends] {
+            table.recycle();
+        }
+        return;
     }
     // Slices from here on: reached through the kept vectors' headers, their
     // pointers and lengths were loaded again after stores (probe, 2D
@@ -929,7 +945,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         // The points: for each run of columns in one cell, whole lanes.
         // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
         // end are overwritten by the next run or row, or not stored.
-        let row = Row { frac: frac0, fade: fade0, weights, off_line: (1..D).any(|d| f[d] != 0.0) };
+        let row = Row { frac: frac0, fade: fade0, weights, off_line: off_line(f) };
         let row_end = i0 + n - lo;
         let (a0, a1) = (i0 - lo, row_end);
         let whole = a0 == 0 && a1 == cols;
@@ -971,41 +987,22 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             (false, _) => {
                 // Corners read a cell's entry and the next one.
                 let view = records.entries(bound_fields, 0, records.stride());
-                match reach {
-                    Some(Reach::Consecutive) if whole => {
-                        for (k, (cells, axis)) in span_of.iter().zip(chunk_axis).enumerate() {
-                            let (x, fade) = axis.lanes::<B>();
-                            let v = row.exact_at(kind, x, fade, &At { entries: &view, at: cells.first });
-                            emit(v, &mut out[o0 + k * w..]);
-                        }
-                    }
-                    Some(Reach::Near) if whole => {
-                        for (k, (cells, axis)) in span_of.iter().zip(chunk_axis).enumerate() {
-                            let (x, fade) = axis.lanes::<B>();
-                            let lane = B::load_int(&cell0[k * w..]).sub(B::Int::splat(cells.first as i32));
-                            let rec = PerLane::<B, true> { entries: &view, first: cells.first, lane: [lane, lane.add_c(1)] };
-                            emit(row.exact_at(kind, x, fade, &rec), &mut out[o0 + k * w..]);
-                        }
-                    }
-                    _ => {
-                        let mut s = a0;
-                        while s < a1 {
-                            // The chunk's cells (lanes past the columns are discarded).
-                            let cells = if s % w == 0 { span_of[s / w] } else { chunk_cells(&cell0[s..(s + w).min(cols)]) };
-                            let first = cells.first;
-                            let at = B::load_int(&cell0[s..]);
-                            let lane = at.sub(B::Int::splat(first as i32));
-                            let lane = [lane, lane.add_c(1)];
-                            let v = match cells.reach(w) {
-                                Reach::Consecutive => row.exact(kind, s, &At { entries: &view, at: first }),
-                                Reach::Near => row.exact(kind, s, &PerLane::<B, true> { entries: &view, first, lane }),
-                                Reach::Wide => row.exact(kind, s, &PerLane::<B, false> { entries: &view, first, lane }),
-                                Reach::Far => row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] }),
-                            };
-                            emit(v, &mut out[o0 + s - a0..]);
-                            s += w;
-                        }
-                    }
+                let mut s = a0;
+                while s < a1 {
+                    // The chunk's cells (lanes past the columns are discarded).
+                    let cells = if s % w == 0 { span_of[s / w] } else { chunk_cells(&cell0[s..(s + w).min(cols)]) };
+                    let first = cells.first;
+                    let at = B::load_int(&cell0[s..]);
+                    let lane = at.sub(B::Int::splat(first as i32));
+                    let lane = [lane, lane.add_c(1)];
+                    let v = match cells.reach(w) {
+                        Reach::Consecutive => row.exact(kind, s, &At { entries: &view, at: first }),
+                        Reach::Near => row.exact(kind, s, &PerLane::<B, true> { entries: &view, first, lane }),
+                        Reach::Wide => row.exact(kind, s, &PerLane::<B, false> { entries: &view, first, lane }),
+                        Reach::Far => row.exact(kind, s, &Gathered { columns: records, at: [at, at.add_c(1)] }),
+                    };
+                    emit(v, &mut out[o0 + s - a0..]);
+                    s += w;
                 }
             }
         }
@@ -1152,10 +1149,12 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let table = bound.field(0, 0);
     for j in 0..n {
         let mut weights = [B::cst(0.0); D];
+        let mut f = [0f32; D];
         for d in 1..D {
             weights[d] = B::splat(fades[d][j]);
+            f[d] = batch.f[d][j];
         }
-        let row = Row { frac: &[], fade: &[], weights, off_line: (1..D).any(|d| batch.f[d][j] != 0.0) };
+        let row = Row { frac: &[], fade: &[], weights, off_line: off_line(f) };
         let start = batch.starts[j];
         let out = &mut out[start..start + nx];
         for (ch, axis) in chunks.iter().zip(chunk_axis) {
@@ -1163,6 +1162,99 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
             let (x, fade) = axis.lanes::<B>();
             emit(row.exact_at(kind, x, fade, &BatchRow { points: two, per_point, row: j }), &mut out[ch.start..]);
         }
+    }
+}
+
+/// The exact fill of whole rows whose cells are narrower than a chunk (a
+/// regular grid with fewer than WIDTH columns per cell: the finer octaves
+/// of a fractal), every chunk reaching its cells one way (`near`: through
+/// one permute per field; otherwise lane j at entry `first + j`). The
+/// generic row loop's work and order, with its per-row and per-chunk
+/// bookkeeping taken out: each chunk's lanes are found once per span, and a
+/// row on the lattice lines picks its corner-0 evaluation once, not per
+/// chunk.
+#[inline(always)]
+fn fill_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    span: Span<'_, D>,
+    out: &mut [f32],
+    chunk_axis: &[ChunkAxis],
+    (point_rows, bound): (&mut PointRows<D>, &mut Columns),
+    (min_cell, points): (i32, usize),
+    near: bool,
+) {
+    let nx = span.axes.size(0);
+    let bound_fields = PointRows::<D>::PER_PLANE * K::BOUND.total();
+    let mut plane: Option<[i32; D]> = None;
+    let mut slot_of = [0usize; MAX_CORNERS / 2];
+    for RowPiece { idx, offset, .. } in span.rows(out.len()) {
+        let mut cell = [0i32; D];
+        let mut f = [0f32; D];
+        for d in 1..D {
+            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
+        }
+        if plane != Some(cell) {
+            slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
+            plane = Some(cell);
+        }
+        let mut weights = [B::splat(0.0); D];
+        let mut fs = [B::splat(0.0); D];
+        for d in 1..D {
+            weights[d] = B::splat(kind.fade(f[d]));
+            fs[d] = B::splat(f[d]);
+        }
+        bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, bound, points);
+        let view = bound.entries(bound_fields, 0, bound.stride());
+        let row = FineRow { view: &view, chunk_axis, weights };
+        let out = &mut out[offset..offset + nx];
+        match (near, off_line(f)) {
+            (true, true) => row.write::<K, true, true>(kind, out),
+            (true, false) => row.write::<K, true, false>(kind, out),
+            (false, true) => row.write::<K, false, true>(kind, out),
+            (false, false) => row.write::<K, false, false>(kind, out),
+        }
+    }
+}
+
+/// One row of [`fill_fine_rows`]: its bound records, the span's chunks and
+/// the row's fades on axes 1...
+struct FineRow<'a, B: BatchLanes, const D: usize> {
+    view: &'a Entries<'a>,
+    chunk_axis: &'a [ChunkAxis],
+    weights: [B; D],
+}
+
+impl<B: BatchLanes, const D: usize> FineRow<'_, B, D> {
+    /// Every chunk of the row into `out` (the whole row). `NEAR`: lanes
+    /// permute one register of entries; `OFF_LINE`: as in [`corner_values`].
+    #[inline(always)]
+    fn write<K: Lattice<D>, const NEAR: bool, const OFF_LINE: bool>(&self, kind: &K, out: &mut [f32]) {
+        let w = B::WIDTH;
+        let full = out.len() / w;
+        let mut whole = out.chunks_exact_mut(w);
+        for (axis, out) in self.chunk_axis.iter().zip(&mut whole) {
+            store_prefix(self.chunk::<K, NEAR, OFF_LINE>(kind, axis), out);
+        }
+        let tail = whole.into_remainder();
+        if !tail.is_empty() {
+            if let Some(axis) = self.chunk_axis.get(full) {
+                store_prefix(self.chunk::<K, NEAR, OFF_LINE>(kind, axis), tail);
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn chunk<K: Lattice<D>, const NEAR: bool, const OFF_LINE: bool>(&self, kind: &K, axis: &ChunkAxis) -> B {
+        let (x, fade) = axis.lanes::<B>();
+        let values = if NEAR {
+            let lane = B::load_int(&axis.lane);
+            corner_values::<K, B, D, OFF_LINE>(kind, x, &PerLane::<B, true> { entries: self.view, first: axis.first, lane: [lane, lane.add_c(1)] })
+        } else {
+            corner_values::<K, B, D, OFF_LINE>(kind, x, &At { entries: self.view, at: axis.first })
+        };
+        let mut weights = self.weights;
+        weights[0] = fade;
+        finish(kind, interpolate(values, weights))
     }
 }
 
@@ -1410,6 +1502,18 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
     }
 }
 
+/// Whether a row at positions `f` on axes 1.. (`f[0]` unused) is off the
+/// lattice lines along axis 0. (A loop: `(1..D).any(..)` was left out of
+/// line, a call per row outside the instruction-set clone.)
+#[inline(always)]
+fn off_line<const D: usize>(f: [f32; D]) -> bool {
+    let mut off = false;
+    for &fd in &f[1..] {
+        off |= fd != 0.0;
+    }
+    off
+}
+
 /// The values of a chunk's corners at positions `x` along axis 0, from
 /// their bound records; `OFF_LINE` for a row off the lattice lines.
 /// Only corner 0's zero can reach the result ([`Lattice::eval_unsigned_zero`]).
@@ -1460,11 +1564,15 @@ fn poly_at<K: Lattice<D>, B: BatchLanes, const D: usize>(x: B, fade: B, coef: &i
 }
 
 /// A chunk's positions and fades, stored with it so whole rows read them
-/// without index arithmetic.
+/// without index arithmetic; for chunks whose lanes lie in several cells
+/// (short runs), also each lane's cell as an entry past `first`, the
+/// chunk's first cell.
 #[derive(Clone, Copy)]
 struct ChunkAxis {
     x: [f32; 16],
     fade: [f32; 16],
+    lane: [i32; 16],
+    first: usize,
 }
 
 impl ChunkAxis {
