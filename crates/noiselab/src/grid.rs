@@ -206,6 +206,11 @@ impl<const D: usize> Axes<D> {
         &self.coords[start..end]
     }
 
+    /// Whether every coordinate of every axis is finite.
+    pub(crate) fn all_finite(&self) -> bool {
+        self.coords[..self.ends[D - 1]].iter().all(|c| c.is_finite())
+    }
+
     /// Points along `axis`.
     #[inline(always)]
     pub fn size(&self, axis: usize) -> usize {

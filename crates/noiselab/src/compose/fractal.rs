@@ -491,10 +491,28 @@ struct Filled<'a, B> {
     amplitudes: &'a [B],
 }
 
+impl<'a, B> Filled<'a, B> {
+    /// `count` octaves from `buffers`, `stride` apart, at chunk 0.
+    #[inline(always)]
+    fn new(buffers: &'a [f32], stride: usize, count: usize, amplitudes: &'a [B]) -> Self {
+        // What `octave`'s unchecked reads rest on.
+        assert!(count.checked_mul(stride).is_some_and(|len| len <= buffers.len()));
+        Filled { buffers, stride, at: 0, count, amplitudes }
+    }
+}
+
 impl<B: BatchLanes> Octaves<B> for Filled<'_, B> {
+    /// Read unchecked but for tests that fold or leave the octave loop
+    /// (checked, the loop took 18 instructions an octave, and the pass
+    /// above 296 M instead of 208 M).
     #[inline(always)]
     fn octave(&self, i: usize, _frequency: f64) -> B {
-        finite_or_zero(B::from_slice(&self.buffers[i * self.stride + self.at..]))
+        assert!(i < self.count && self.at <= self.stride && B::WIDTH <= self.stride - self.at);
+        // SAFETY: `new` checked count · stride ≤ buffers.len(), and i <
+        // count, at + WIDTH ≤ stride, so the lanes end within octave i's
+        // stride, at most (i + 1) · stride ≤ buffers.len().
+        let lanes = unsafe { core::slice::from_raw_parts(self.buffers.as_ptr().add(i * self.stride + self.at), B::WIDTH) };
+        finite_or_zero(B::from_slice(lanes))
     }
     #[inline(always)]
     fn amplitude(&self, i: usize, _amplitude: f64) -> B {
@@ -541,6 +559,9 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         for (lanes, &a) in amplitudes.iter_mut().zip(&self.steps.amplitude).take(count) {
             *lanes = B::cst(a);
         }
+        // Where every coordinate is finite, point evaluation's NaN guard
+        // passes every value: the combine needs no positions.
+        let finite = span.axes.all_finite();
         let mut done = 0;
         while done < out.len() {
             let len = block.min(out.len() - done);
@@ -552,8 +573,8 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                 // not again in every fractal over it (one call per block).
                 noise.dispatch_span(B::LEVEL, Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
             }
-            let part = Span { axes: span.axes, start, accuracy: span.accuracy };
-            let filled = Filled { buffers: &buffers[..], stride, at: 0, count, amplitudes: &amplitudes[..] };
+            let part = (!finite).then_some(Span { axes: span.axes, start, accuracy: span.accuracy });
+            let filled = Filled::new(&buffers[..], stride, count, &amplitudes[..]);
             let out = &mut out[done..done + len];
             // The mode dispatched once per block.
             match self.mode {
@@ -575,10 +596,26 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
 impl<N> Fractal<N> {
     /// The grid fill's second pass over a block (`part`, `out.len()`
     /// points): the octave loop in `mode` over the filled octaves (`filled`,
-    /// from `at` 0), point by point.
+    /// from `at` 0), point by point. `part` is `None` where every
+    /// coordinate is finite: the octaves then combine in output order, a
+    /// chunk of lanes at a time across rows (callgrind, probe, 6-octave fBm
+    /// over 32² tiles: this pass 378 → 296 M instructions, against row by
+    /// row with positions).
     #[inline(always)]
-    fn combine_block<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Span<'_, D>, filled: Filled<'_, B>, out: &mut [f32]) {
+    fn combine_block<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Option<Span<'_, D>>, filled: Filled<'_, B>, out: &mut [f32]) {
         let w = B::WIDTH;
+        let Some(part) = part else {
+            let full = out.len() / w;
+            let mut whole = out.chunks_exact_mut(w);
+            for (k, out) in (&mut whole).enumerate() {
+                store_prefix(self.combine_as(mode, filled.count, &Filled { at: k * w, ..filled }), out);
+            }
+            let tail = whole.into_remainder();
+            if !tail.is_empty() {
+                store_prefix(self.combine_as(mode, filled.count, &Filled { at: full * w, ..filled }), tail);
+            }
+            return;
+        };
         let xs = part.axes.axis(0);
         for RowPiece { idx, first, offset, len: n } in part.rows(out.len()) {
             let mut p = [B::cst(0.0); D];

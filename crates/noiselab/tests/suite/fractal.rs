@@ -207,3 +207,22 @@ fn bad_parameters_are_typed_errors() {
     let octave = noiselab::Octave { index: 1, seed: 0, frequency: 2.5 };
     assert!(octave.period([3, 0, 0, 0]).is_err());
 }
+
+/// Where a grid's coordinates leave f32's range, its fractal fill gives NaN
+/// there and the point values everywhere else, in every mode (the combine
+/// pass keeps point evaluation's guard only for such grids).
+#[test]
+fn fractal_grids_past_the_float_range_equal_their_points() {
+    // Axis 0 runs 3.0e38, 3.2e38, 3.4e38, then past f32::MAX (∞).
+    let grid = Grid::new([3.0e38, 0.2], [2.0e37, 0.1], [8, 3]);
+    for mode in FractalMode::ALL {
+        let fractal = Fractal::new(|o| Improved::new(o.seed), 4, 5, mode).unwrap();
+        let mut out = vec![0f32; grid.len()];
+        fractal.fill_grid(&grid, &mut out).unwrap();
+        for (i, &v) in out.iter().enumerate() {
+            let p = grid.point(i);
+            assert_eq!(v.is_nan(), !p[0].is_finite(), "{mode:?}: point {i} at {p:?} gave {v}");
+            assert_eq!(v.to_bits(), fractal.get_f32(p).to_bits(), "{mode:?}: point {i} at {p:?}");
+        }
+    }
+}
