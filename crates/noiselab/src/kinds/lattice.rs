@@ -877,23 +877,14 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
 
     for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         // Axes 1..: the same for the whole row.
-        let mut cell = [0i32; D];
-        let mut f = [0f32; D];
-        for d in 1..D {
-            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
-        }
+        let (cell, f) = row_cells(kind, &span, idx);
         let new_plane = plane != Some(cell);
         if new_plane {
             slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
             plane = Some(cell);
         }
         // Bind the row's offsets to every point of the plane's rows.
-        let mut weights = [B::splat(0.0); D];
-        let mut fs = [B::splat(0.0); D];
-        for d in 1..D {
-            weights[d] = B::splat(kind.fade(f[d]));
-            fs[d] = B::splat(f[d]);
-        }
+        let (weights, fs) = row_lanes::<K, B, D>(kind, f);
         if new_plane || !by_plane {
             bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, &mut bound, points);
         }
@@ -1073,10 +1064,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut rows = span
         .rows(out.len())
         .map(|RowPiece { idx, offset, .. }| {
-            let (mut cell, mut f) = ([0i32; D], [0f32; D]);
-            for d in 1..D {
-                (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
-            }
+            let (cell, f) = row_cells(kind, &span, idx);
             (offset, cell, f)
         })
         .peekable();
@@ -1188,21 +1176,12 @@ fn fill_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     for RowPiece { idx, offset, .. } in span.rows(out.len()) {
-        let mut cell = [0i32; D];
-        let mut f = [0f32; D];
-        for d in 1..D {
-            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
-        }
+        let (cell, f) = row_cells(kind, &span, idx);
         if plane != Some(cell) {
             slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
             plane = Some(cell);
         }
-        let mut weights = [B::splat(0.0); D];
-        let mut fs = [B::splat(0.0); D];
-        for d in 1..D {
-            weights[d] = B::splat(kind.fade(f[d]));
-            fs[d] = B::splat(f[d]);
-        }
+        let (weights, fs) = row_lanes::<K, B, D>(kind, f);
         bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, bound, points);
         let view = bound.entries(bound_fields, 0, bound.stride());
         let row = FineRow { view: &view, chunk_axis, weights };
@@ -1237,9 +1216,7 @@ impl<B: BatchLanes, const D: usize> FineRow<'_, B, D> {
         }
         let tail = whole.into_remainder();
         if !tail.is_empty() {
-            if let Some(axis) = self.chunk_axis.get(full) {
-                store_prefix(self.chunk::<K, NEAR, OFF_LINE>(kind, axis), tail);
-            }
+            store_prefix(self.chunk::<K, NEAR, OFF_LINE>(kind, &self.chunk_axis[full]), tail);
         }
     }
 
@@ -1300,10 +1277,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut rows_of_span = span
         .rows(out.len())
         .map(|RowPiece { idx, offset, .. }| {
-            let (mut cell, mut f) = ([0i32; D], [0f32; D]);
-            for d in 1..D {
-                (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
-            }
+            let (cell, f) = row_cells(kind, &span, idx);
             (offset, cell, f, idx)
         })
         .peekable();
@@ -1500,6 +1474,30 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
     fn poly<K: Lattice<D>>(&self, s: usize, coef: &impl Source<B>) -> B {
         poly_at::<K, B, D>(B::from_slice(&self.frac[s..]), B::from_slice(&self.fade[s..]), coef)
     }
+}
+
+/// A grid row's cells and positions on axes 1.. (`[0]` unused), from its
+/// indices along them.
+#[inline(always)]
+fn row_cells<K: Lattice<D>, const D: usize>(kind: &K, span: &Span<'_, D>, idx: [usize; D]) -> ([i32; D], [f32; D]) {
+    let mut cell = [0i32; D];
+    let mut f = [0f32; D];
+    for d in 1..D {
+        (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
+    }
+    (cell, f)
+}
+
+/// A row's fades (`weights`) and positions (`fs`) on axes 1.. in lanes.
+#[inline(always)]
+fn row_lanes<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, f: [f32; D]) -> ([B; D], [B; D]) {
+    let mut weights = [B::splat(0.0); D];
+    let mut fs = [B::splat(0.0); D];
+    for d in 1..D {
+        weights[d] = B::splat(kind.fade(f[d]));
+        fs[d] = B::splat(f[d]);
+    }
+    (weights, fs)
 }
 
 /// Whether a row at positions `f` on axes 1.. (`f[0]` unused) is off the
