@@ -211,6 +211,11 @@ impl<const D: usize> Axes<D> {
         self.coords[..self.ends[D - 1]].iter().all(|c| c.is_finite())
     }
 
+    /// Whether every coordinate of every axis is an integer (finite).
+    pub(crate) fn all_integers(&self) -> bool {
+        self.coords[..self.ends[D - 1]].iter().all(|&c| c.is_finite() && c == crate::lanes::math::floor32(c))
+    }
+
     /// Points along `axis`.
     #[inline(always)]
     pub fn size(&self, axis: usize) -> usize {

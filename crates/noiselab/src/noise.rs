@@ -82,6 +82,15 @@ pub trait Noise<const D: usize>: Send + Sync {
         grid::fill_pointwise::<Self, B, D>(self, span, out)
     }
 
+    /// Whether [`Noise::get_f32`] is ±0 at every point with integer
+    /// coordinates (gradient noise; `false` when not known). The fractal
+    /// grid fill leaves out an octave whose grid lies on such points.
+    #[doc(hidden)]
+    #[inline]
+    fn zero_at_integers(&self) -> bool {
+        false
+    }
+
     /// The batch drivers' entry for a span: [`Noise::fill_span`] compiled
     /// for `level` (the best the CPU has up to it). Kinds override it to
     /// enter clones compiled in their own module (`grid::batch_clones!`);
@@ -130,6 +139,10 @@ impl<N: Noise<D>, const D: usize> Noise<D> for &N {
         (**self).fill_span::<B>(span, out)
     }
     #[inline]
+    fn zero_at_integers(&self) -> bool {
+        (**self).zero_at_integers()
+    }
+    #[inline]
     fn dispatch_span(&self, level: SimdLevel, span: Span<'_, D>, out: &mut [f32]) {
         (**self).dispatch_span(level, span, out)
     }
@@ -165,6 +178,9 @@ pub trait DynNoise<const D: usize>: Send + Sync {
     /// best instruction-set level).
     #[doc(hidden)]
     fn fill_span_dyn(&self, span: Span<'_, D>, out: &mut [f32]);
+    /// [`Noise::zero_at_integers`].
+    #[doc(hidden)]
+    fn zero_at_integers_dyn(&self) -> bool;
 }
 
 /// A noise chosen at run time is a [`Noise`] again (one virtual call per
@@ -180,6 +196,10 @@ impl<const D: usize> Noise<D> for alloc::boxed::Box<dyn DynNoise<D>> {
         // The boxed noise's own path (`**self`: not the box's blanket
         // DynNoise impl, which would come back here).
         (**self).fill_span_dyn(span, out)
+    }
+    #[inline]
+    fn zero_at_integers(&self) -> bool {
+        (**self).zero_at_integers_dyn()
     }
 }
 
@@ -204,6 +224,9 @@ impl<N: Noise<D>, const D: usize> DynNoise<D> for N {
     }
     fn fill_span_dyn(&self, span: Span<'_, D>, out: &mut [f32]) {
         grid::fill_span_best(self, span, out)
+    }
+    fn zero_at_integers_dyn(&self) -> bool {
+        Noise::zero_at_integers(self)
     }
 }
 

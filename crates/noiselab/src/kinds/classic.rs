@@ -223,6 +223,8 @@ impl Classic {
 impl<const D: usize> Lattice<D> for Classic {
     const HASHED: Fields = Fields { floats: D, ints: 0 };
     const BOUND: Fields = Fields { floats: D, ints: 0 };
+    /// (`x + 4096` is an integer where `x` is.)
+    const ZERO_AT_INTEGERS: bool = true;
 
     /// As the C `setup`: `t = x + 4096` is formed first (quantising f32
     /// positions), the cell is `⌊t⌋` and the position `t − ⌊t⌋`.
@@ -297,6 +299,10 @@ macro_rules! impl_classic {
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
                 lattice::fill_span::<Self, B, $d>(self, span, out)
+            }
+            #[inline]
+            fn zero_at_integers(&self) -> bool {
+                <Self as Lattice<$d>>::ZERO_AT_INTEGERS
             }
         }
     )*};

@@ -228,6 +228,7 @@ impl<const D: usize> Lattice<D> for Improved {
     /// 1D–3D: axis 0's coefficient and the other axes' terms; 4D: the
     /// offsets of axes 1..3 and the hash.
     const BOUND: Fields = if D == 4 { Fields { floats: 3, ints: 1 } } else { Fields { floats: 2, ints: 0 } };
+    const ZERO_AT_INTEGERS: bool = true;
 
     #[inline(always)]
     fn fade<L: Lanes>(&self, t: L) -> L {
@@ -327,6 +328,10 @@ macro_rules! impl_improved {
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
                 lattice::fill_span::<Self, B, $d>(self, span, out)
+            }
+            #[inline]
+            fn zero_at_integers(&self) -> bool {
+                <Self as Lattice<$d>>::ZERO_AT_INTEGERS
             }
         }
         impl NoiseGradient<$d> for Improved {

@@ -89,6 +89,13 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
     /// cells rather than once per row.
     const FLAT: bool = false;
 
+    /// Whether the field is ±0 at every integer point, as gradient noise
+    /// is: there corner 0's offsets are all 0 (its value a dot product with
+    /// zeros) and every fade is 0 (`a + 0·(b − a)` keeps corner 0's zero,
+    /// up to its sign). The fractal grid fill leaves out octaves whose
+    /// grid lies on integer points.
+    const ZERO_AT_INTEGERS: bool = false;
+
     /// The blend weight of a position inside a cell.
     fn fade<L: Lanes>(&self, t: L) -> L;
 

@@ -175,6 +175,7 @@ macro_rules! modified_lattice {
         impl<const D: usize> Lattice<D> for $t {
             const HASHED: Fields = Fields { floats: D, ints: 0 };
             const BOUND: Fields = Fields { floats: D, ints: 0 };
+            const ZERO_AT_INTEGERS: bool = true;
 
             #[inline(always)]
             fn fade<L: Lanes>(&self, t: L) -> L {
@@ -246,6 +247,10 @@ macro_rules! impl_modified {
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
                 lattice::fill_span::<Self, B, $d>(self, span, out)
             }
+            #[inline]
+            fn zero_at_integers(&self) -> bool {
+                <Self as Lattice<$d>>::ZERO_AT_INTEGERS
+            }
         }
         impl Noise<$d> for ModifiedTexture {
             crate::grid::batch_entry!($d);
@@ -256,6 +261,10 @@ macro_rules! impl_modified {
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
                 lattice::fill_span::<Self, B, $d>(self, span, out)
+            }
+            #[inline]
+            fn zero_at_integers(&self) -> bool {
+                <Self as Lattice<$d>>::ZERO_AT_INTEGERS
             }
         }
         impl NoiseGradient<$d> for Modified {

@@ -2,6 +2,7 @@
 //! composes across octaves, analytic derivatives, the footprint rule, and
 //! run-time composition through `Box<dyn DynNoise>`.
 
+use noiselab::grid::{fill_grid_at, Accuracy, SimdLevel};
 use noiselab::hash::SplitMix64;
 use noiselab::{
     Classic, Fractal, FractalMode, Grid, Improved, Modified, Noise, NoiseGradient, Simplex, Sparse, Value, Worley,
@@ -225,4 +226,51 @@ fn fractal_grids_past_the_float_range_equal_their_points() {
             assert_eq!(v.to_bits(), fractal.get_f32(p).to_bits(), "{mode:?}: point {i} at {p:?}");
         }
     }
+}
+
+/// Octaves of gradient noise whose grid lies on integer points are ±0 at
+/// every point, and the fractal fill leaves them out; its values are still
+/// the point values bit for bit, zero signs included, in every mode and at
+/// every instruction-set level.
+#[inline(never)]
+fn check_on_integers<N: Noise<D>, const D: usize>(name: &str, make: impl Fn(u32) -> N, grids: &[Grid<D>]) {
+    for mode in FractalMode::ALL {
+        let fractal = Fractal::new(|o| make(o.seed), 4, 6, mode).unwrap();
+        for grid in grids {
+            let points: Vec<f32> = (0..grid.len()).map(|i| fractal.get_f32(grid.point(i))).collect();
+            for level in SimdLevel::available() {
+                let mut out = vec![f32::NAN; grid.len()];
+                fill_grid_at(level, &fractal, grid, &mut out, Accuracy::Exact).unwrap();
+                for (i, (&v, &p)) in out.iter().zip(&points).enumerate() {
+                    assert_eq!(v.to_bits(), p.to_bits(), "{name} {mode:?} {level:?} {grid:?}: point {i} at {:?}", grid.point(i));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn fractal_grids_on_integer_points_equal_their_points() {
+    let grids = [
+        // From octave 2 on, every octave lies on integer points.
+        Grid::new([3.0, -2.0], [0.25; 2], [13, 9]),
+        // A tile: its fBm is 0 only at its origin.
+        Grid::new([5.0, 7.0], [1.0 / 32.0; 2], [32, 32]),
+        // A quarter of the points are 0.
+        Grid::new([-4.0, 1.0], [0.5; 2], [11, 6]),
+        // Every octave on integer points: every value is ±0.
+        Grid::new([-4.0, 1.0], [1.0; 2], [7, 5]),
+    ];
+    check_on_integers::<_, 2>("improved", Improved::new, &grids);
+    check_on_integers::<_, 2>("classic", Classic::new, &grids);
+    check_on_integers::<_, 2>("modified", Modified::new, &grids);
+    check_on_integers::<_, 3>("improved", Improved::new, &[Grid::new([1.0, 2.0, -3.0], [0.125; 3], [9, 5, 4])]);
+    // Two blocks of the fill (the second starts mid-grid).
+    check_on_integers::<_, 2>("improved", Improved::new, &[Grid::new([0.0; 2], [1.0 / 32.0; 2], [600, 300])]);
+    // fBm's sum starts at +0, and with every octave ±0 stays +0.
+    let fbm = Fractal::new(|o| Improved::new(o.seed), 4, 6, FractalMode::Fbm).unwrap();
+    let grid = Grid::new([-4.0, 1.0], [1.0; 2], [7, 5]);
+    let mut out = vec![f32::NAN; grid.len()];
+    fbm.fill_grid(&grid, &mut out).unwrap();
+    assert!(out.iter().all(|v| v.to_bits() == 0), "{out:?}");
 }
