@@ -264,6 +264,8 @@ fn fractal_grids_on_integer_points_equal_their_points() {
     check_on_integers::<_, 2>("improved", Improved::new, &grids);
     check_on_integers::<_, 2>("classic", Classic::new, &grids);
     check_on_integers::<_, 2>("modified", Modified::new, &grids);
+    // Chosen at run time, as the command line's noises are.
+    check_on_integers::<_, 2>("boxed improved", |s| Box::new(Improved::new(s)) as Box<dyn noiselab::DynNoise<2>>, &grids[..2]);
     check_on_integers::<_, 3>("improved", Improved::new, &[Grid::new([1.0, 2.0, -3.0], [0.125; 3], [9, 5, 4])]);
     // Two blocks of the fill (the second starts mid-grid).
     check_on_integers::<_, 2>("improved", Improved::new, &[Grid::new([0.0; 2], [1.0 / 32.0; 2], [600, 300])]);
