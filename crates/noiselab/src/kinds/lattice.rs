@@ -388,13 +388,6 @@ impl<'a> OneCell<'a> {
     fn new(columns: &'a Columns, cell: usize, fields: usize) -> Self {
         OneCell(columns.entries(fields, cell, 2))
     }
-
-    /// The same entries from field `base` on, as a source whose field 0 is
-    /// `base`.
-    #[inline(always)]
-    fn from(&self, base: usize) -> Shifted<'_, Self> {
-        Shifted { source: self, base }
-    }
 }
 
 /// A source's fields from `base` on.
@@ -464,6 +457,37 @@ fn zeros<T: Copy + Default>(v: &mut Vec<T>, len: usize) -> &mut Vec<T> {
     v
 }
 
+/// The cell, position and fade of each coordinate, into `cell`, `frac`
+/// and `fade` (`padded` entries, at least the coordinates rounded up to
+/// whole lanes; entries past them repeat the last coordinate's, then 0).
+#[inline(always)]
+fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    coords: &[f32],
+    (cell, frac, fade): (&mut Vec<i32>, &mut Vec<f32>, &mut Vec<f32>),
+    padded: usize,
+) {
+    let (cell, frac, fade) = (zeros(cell, padded), zeros(frac, padded), zeros(fade, padded));
+    let (n, w) = (coords.len(), B::WIDTH);
+    let mut k = 0;
+    while k < n {
+        let x = if k + w <= n {
+            B::from_slice(&coords[k..])
+        } else {
+            let mut xk = [0f32; 16];
+            for (j, x) in xk.iter_mut().enumerate().take(w) {
+                *x = coords[(k + j).min(n - 1)];
+            }
+            B::from_slice(&xk)
+        };
+        let (c, f) = kind.split(x);
+        B::store_int(c, &mut cell[k..]);
+        f.store(&mut frac[k..]);
+        kind.fade(f).store(&mut fade[k..]);
+        k += w;
+    }
+}
+
 /// A lattice fill's vectors, kept by each thread between calls: a 32²
 /// tile's fill allocated and freed ten of them (probe, 2D improved on
 /// AVX2: keeping them, with the axes in one scratch buffer, 5 % fewer
@@ -483,9 +507,12 @@ struct Tables {
     span_of: Vec<ChunkCells>,
     /// Flat kinds: the rows waiting in a [`Band`].
     plane_rows: Vec<(usize, [f32; 4])>,
-    /// [`fill_bands`]: each chunk's band coefficients, and the band's rows.
+    /// [`fill_bands`]: axis 1 by row (cell, position and fade), and each
+    /// chunk's band coefficients.
+    cell1: Vec<i32>,
+    frac1: Vec<f32>,
+    fade1: Vec<f32>,
     band_coef: Vec<f32>,
-    band_rows: Vec<(usize, f32, f32)>,
 }
 
 #[cfg(feature = "std")]
@@ -519,8 +546,10 @@ impl Tables {
             + bytes(&self.chunk_axis)
             + bytes(&self.span_of)
             + bytes(&self.plane_rows)
-            + bytes(&self.band_coef)
-            + bytes(&self.band_rows);
+            + bytes(&self.cell1)
+            + bytes(&self.frac1)
+            + bytes(&self.fade1)
+            + bytes(&self.band_coef);
         if held <= Self::KEPT_BYTES {
             KEPT_TABLES.with(|kept| kept.set(self));
         }
@@ -722,7 +751,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     out: &mut [f32],
     tables: &mut Tables,
 ) {
-    let Tables { cell0, frac0, fade0, runs, chunks, chunk_axis, span_of, plane_rows, band_coef, band_rows } = tables;
+    let Tables { cell0, frac0, fade0, runs, chunks, chunk_axis, span_of, plane_rows, cell1, frac1, fade1, band_coef } = tables;
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
     let nx = xs.len();
@@ -735,24 +764,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     // Axis 0 once per span: cell, position and fade of each column.
     let cols = hi - lo;
     let padded = cols.div_ceil(w) * w + w;
-    let (cell0, frac0, fade0) = (zeros(cell0, padded), zeros(frac0, padded), zeros(fade0, padded));
-    let mut k = 0;
-    while k < cols {
-        let x = if k + w <= cols {
-            B::from_slice(&xs[lo + k..])
-        } else {
-            let mut xk = [0f32; 16];
-            for (j, x) in xk.iter_mut().enumerate().take(w) {
-                *x = xs[lo + (k + j).min(cols - 1)];
-            }
-            B::from_slice(&xk)
-        };
-        let (c, f) = kind.split(x);
-        B::store_int(c, &mut cell0[k..]);
-        f.store(&mut frac0[k..]);
-        kind.fade(f).store(&mut fade0[k..]);
-        k += w;
-    }
+    split_axis::<K, B, D>(kind, &xs[lo..hi], (cell0, frac0, fade0), padded);
     // Runs of equal cells; cells numbered from the smallest.
     let (min_cell, max_cell) = super::cell_range(&cell0[..cols]);
     let ncell = (max_cell as i64 - min_cell as i64 + 1) as usize;
@@ -778,10 +790,11 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     let whole_rows = lo == 0 && hi == nx && span.start.is_multiple_of(nx) && out.len().is_multiple_of(nx);
     // Fast, whole rows, and cells that hold several rows along axis 1:
     // down the columns, a band of rows at a time ([`fill_bands`]).
+    // (Axis 1 by row, as axis 0 by column, kept for the bands.)
     let bands = fast && D >= 2 && whole_rows && {
-        let ys = span.axes.axis(1);
-        let planes = 1 + ys.windows(2).filter(|y| kind.split::<f32>(y[0]).0 != kind.split::<f32>(y[1]).0).count();
-        ys.len() >= BAND_ROWS * planes
+        let ny = span.axes.size(1);
+        split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w);
+        ny >= BAND_ROWS * run_count(&cell1[..ny])
     };
     // Whole rows of long runs, exact, with few enough lattice points that a
     // batch's bound records stay in L1 beside the rows: rows in batches,
@@ -832,8 +845,8 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     }
     if batches || bands {
         if bands {
-            let rows = (band_coef, band_rows);
-            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), rows);
+            let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
+            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), axis1, band_coef);
         } else {
             fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, min_cell, points);
         }
@@ -1266,9 +1279,10 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     point_rows: &mut PointRows<D>,
     (min_cell, points): (i32, usize),
-    (coef, band): (&mut Vec<f32>, &mut Vec<(usize, f32, f32)>),
+    (cell1, frac1, fade1): (&[i32], &[f32], &[f32]),
+    coef: &mut Vec<f32>,
 ) {
-    let nx = span.axes.size(0);
+    let (nx, ny) = (span.axes.size(0), span.axes.size(1));
     let w = B::WIDTH;
     let rows = PointRows::<D>::PER_PLANE;
     let ncell = points - 1;
@@ -1279,19 +1293,27 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut halves = Columns::new(16, room);
     // Each chunk's band coefficients, chunk by chunk.
     let coef = zeros(coef, chunks.len() * 4 * w);
-    // The band's rows: start in the output, position and fade on axis 1.
-    band.clear();
-    let mut rows_of_span = span
-        .rows(out.len())
-        .map(|RowPiece { idx, offset, .. }| {
-            let (cell, f) = row_cells(kind, &span, idx);
-            (offset, cell, f, idx)
-        })
-        .peekable();
-    while let Some((offset, cell, f, idx)) = rows_of_span.next() {
-        band.push((offset, f[1], kind.fade(f[1])));
-        if rows_of_span.peek().is_some_and(|next| next.1 == cell && next.3[2..] == idx[2..]) {
-            continue;
+    // Chunks before `whole` store all their lanes inside the row; the
+    // rest, at its end, store as many as fit.
+    let whole = chunks.partition_point(|ch| ch.start + w <= nx);
+    // Grid rows `first_row..end_row`; whole rows, so row r starts at
+    // (r − first_row) · nx in `out`.
+    let first_row = span.start / nx;
+    let end_row = first_row + out.len() / nx;
+    let mut r = first_row;
+    while r < end_row {
+        // The band: rows y0..y1 of one plane, in one cell along axis 1.
+        let idx = span.axes.row_indices(r);
+        let y0 = idx[1];
+        let y_end = ny.min(y0 + (end_row - r));
+        let mut y1 = y0 + 1;
+        while y1 < y_end && cell1[y1] == cell1[y0] {
+            y1 += 1;
+        }
+        let (mut cell, mut f) = ([0i32; D], [0f32; D]);
+        cell[1] = cell1[y0];
+        for d in 2..D {
+            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
         }
         let slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
         // Bind the plane's rows at the band's offsets on axes 2.., with
@@ -1333,12 +1355,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
         // Each chunk's coefficients from its cell's half-blends.
         for ((ch, axis), to) in chunks.iter().zip(chunk_axis).zip(coef.chunks_exact_mut(4 * w)) {
-            let (x, fade) = axis.lanes::<B>();
-            let cell = OneCell::new(&halves, ch.cell, 16);
-            let mut half = [B::cst(0.0); 4];
-            for (h, v) in half.iter_mut().enumerate() {
-                *v = poly_at::<K, B, D>(x, fade, &cell.from(4 * h));
-            }
+            let half = half_blends::<K, B, D>(axis, &OneCell::new(&halves, ch.cell, 16));
             let p1 = half[1] - half[0];
             let band_coef = [half[0], p1, half[2] - half[0], (half[3] - half[2]) - p1];
             for (m, v) in band_coef.into_iter().enumerate() {
@@ -1347,21 +1364,45 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
         // Row by row, so that the stores stream: down the columns, each
         // store missed the cache (2D at 1/32: 0.93 ns/point against 0.65).
-        for &(at, v, s) in band.iter() {
+        let (coef_whole, coef_end) = coef.split_at(whole * 4 * w);
+        let at = (r - first_row) * nx;
+        let band_out = &mut out[at..at + (y1 - y0) * nx];
+        for ((row, &v), &s) in band_out.chunks_exact_mut(nx).zip(&frac1[y0..y1]).zip(&fade1[y0..y1]) {
             let (v, s) = (B::splat(v), B::splat(s));
-            let row = &mut out[at..at + nx];
-            for (ch, c) in chunks.iter().zip(coef.chunks_exact(4 * w)) {
-                let [p0, p1, q0, q1] = [B::from_slice(c), B::from_slice(&c[w..]), B::from_slice(&c[2 * w..]), B::from_slice(&c[3 * w..])];
-                // Lanes past the chunk's cell are written again by the next
-                // chunk; lanes past the row are not written.
-                emit((p0 + p1 * v) + s * (q0 + q1 * v), &mut row[ch.start..]);
+            // Lanes past a chunk's cell are written again by the next chunk.
+            for (ch, c) in chunks[..whole].iter().zip(coef_whole.chunks_exact(4 * w)) {
+                band_value::<B>(c, v, s).store(&mut row[ch.start..ch.start + w]);
+            }
+            for (ch, c) in chunks[whole..].iter().zip(coef_end.chunks_exact(4 * w)) {
+                emit(band_value::<B>(c, v, s), &mut row[ch.start..]);
             }
         }
-        band.clear();
+        r += y1 - y0;
     }
     for table in bound.into_iter().chain([halves]) {
         table.recycle();
     }
+}
+
+/// A chunk's four half-blends ([`fill_bands`]) at its positions along axis
+/// 0, from its cells' coefficients (16 fields: four per half-blend).
+#[inline(always)]
+fn half_blends<K: Lattice<D>, B: BatchLanes, const D: usize>(axis: &ChunkAxis, cells: &impl Source<B>) -> [B; 4] {
+    let (x, fade) = axis.lanes::<B>();
+    let mut half = [B::cst(0.0); 4];
+    for (h, v) in half.iter_mut().enumerate() {
+        *v = poly_at::<K, B, D>(x, fade, &Shifted { source: cells, base: 4 * h });
+    }
+    half
+}
+
+/// A band's point from its chunk's coefficients `c` (`p₀, p₁, q₀, q₁`, a
+/// register each) at position `v` (fade `s`) along axis 1.
+#[inline(always)]
+fn band_value<B: BatchLanes>(c: &[f32], v: B, s: B) -> B {
+    let w = B::WIDTH;
+    let [p0, p1, q0, q1] = [B::from_slice(c), B::from_slice(&c[w..]), B::from_slice(&c[2 * w..]), B::from_slice(&c[3 * w..])];
+    (p0 + p1 * v) + s * (q0 + q1 * v)
 }
 
 /// Flat kinds: rows of one plane whose points are the same columns

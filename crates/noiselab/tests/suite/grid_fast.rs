@@ -4,7 +4,7 @@
 
 use noiselab::grid::fill_grid_at;
 use noiselab::{
-    Accuracy, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise,
+    Accuracy, Axes, Span, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise,
     SimdLevel, Simplex, Value, Worley,
 };
 
@@ -109,4 +109,34 @@ fn fill<N: Noise<2>>(level: SimdLevel, noise: &N, grid: &Grid<2>, accuracy: Accu
     let mut out = vec![0f32; grid.len()];
     fill_grid_at(level, noise, grid, &mut out, accuracy).unwrap();
     out
+}
+
+/// Fast fills of whole rows that start and end anywhere in a plane or a
+/// cell (as parallel tasks cut a grid) give the whole grid's bits: the
+/// fill down the columns forms a cell's coefficients the same way however
+/// many of its rows a span holds.
+#[test]
+fn fast_spans_of_whole_rows_equal_the_whole_grid() {
+    check_spans(&Improved::new(4), Grid::new([-0.4, 2.1], [1.0 / 32.0, 1.0 / 24.0], [50, 70]));
+    check_spans(&Improved::new(4), Grid::new([0.3, -1.0, 0.45], [1.0 / 32.0, 1.0 / 20.0, 0.3], [43, 30, 4]));
+    check_spans(&Improved::new(9), Grid::new([5.5, 0.0, -2.0, 0.1], [0.05, 0.04, 0.5, 0.7], [33, 26, 2, 2]));
+}
+
+#[inline(never)]
+fn check_spans<N: Noise<D>, const D: usize>(noise: &N, grid: Grid<D>) {
+    let axes = Axes::of(&grid);
+    let nx = grid.size[0];
+    let rows = grid.len() / nx;
+    for level in SimdLevel::available() {
+        let mut whole = vec![0f32; grid.len()];
+        fill_grid_at(level, noise, &grid, &mut whole, Accuracy::Fast).unwrap();
+        for (first, count) in [(0, rows), (1, 5), (3, 1), (7, rows - 7), (rows / 2 - 3, 9), (rows - 2, 2)] {
+            let mut out = vec![0f32; count * nx];
+            noise.dispatch_span(level, Span { axes: &axes, start: first * nx, accuracy: Accuracy::Fast }, &mut out);
+            let expected = &whole[first * nx..(first + count) * nx];
+            for (k, (&e, &o)) in expected.iter().zip(&out).enumerate() {
+                assert_eq!(e.to_bits(), o.to_bits(), "{D}D {level:?}, rows {first}+{count}, point {}: {e:e} vs {o:e}", first * nx + k);
+            }
+        }
+    }
 }
