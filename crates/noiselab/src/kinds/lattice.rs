@@ -488,6 +488,9 @@ fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
     }
 }
 
+/// An axis's cells, positions and fades by index ([`split_axis`]).
+type AxisRows<'a> = (&'a [i32], &'a [f32], &'a [f32]);
+
 /// A lattice fill's vectors, kept by each thread between calls: a 32²
 /// tile's fill allocated and freed ten of them (probe, 2D improved on
 /// AVX2: keeping them, with the axes in one scratch buffer, 5 % fewer
@@ -846,7 +849,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     if batches || bands {
         if bands {
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
-            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), axis1, band_coef);
+            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), (axis1, band_coef));
         } else {
             fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, min_cell, points);
         }
@@ -1279,8 +1282,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     point_rows: &mut PointRows<D>,
     (min_cell, points): (i32, usize),
-    (cell1, frac1, fade1): (&[i32], &[f32], &[f32]),
-    coef: &mut Vec<f32>,
+    ((cell1, frac1, fade1), coef): (AxisRows<'_>, &mut Vec<f32>),
 ) {
     let (nx, ny) = (span.axes.size(0), span.axes.size(1));
     let w = B::WIDTH;
