@@ -1,7 +1,7 @@
 //! Working buffers reused across grid fills on the same thread, so a
 //! fill allocates (and the system zeroes and maps pages) once per thread,
 //! not once per call: a fractal's octave buffers are megabytes, and a
-//! lattice fill's records hundreds of kilobytes at one cell per point,
+//! fill's records hundreds of kilobytes at one cell per point,
 //! which the allocator returns to the system on free and must map again
 //! (2D improved noise, one 2048-point row at one cell per point: 70 µs a
 //! call with fresh allocations, 26 µs with the allocator told never to
@@ -13,10 +13,10 @@
 
 use alloc::vec::Vec;
 
-/// Most buffers a thread keeps: a grid fill holds its axes and a lattice
-/// fill four tables at once; a fractal adds its octave values and each
-/// octave's axes (six octaves of lattice noise: twelve). Deeper nesting
-/// allocates past these.
+/// Most buffers a thread keeps: a grid fill holds its axes and a cellular
+/// fill four tables at once (a lattice fill keeps its own tables); a
+/// fractal adds its octave values and each octave's axes (six octaves:
+/// eight). Deeper nesting allocates past these.
 #[cfg(feature = "std")]
 const KEPT: usize = 16;
 

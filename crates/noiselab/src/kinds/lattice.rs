@@ -498,6 +498,15 @@ type AxisRows<'a> = (&'a [i32], &'a [f32], &'a [f32]);
 /// finds none kept and allocates its own.
 #[derive(Default)]
 struct Tables {
+    /// The [`Columns`] of the fill: the point rows' hashed records, the
+    /// rows' bound records ([`fill_bands`]: at v = 0, and `bound_upper` at
+    /// v = 1), the fast rows' polynomials ([`fill_bands`]: the cells'
+    /// half-blends) and a plane's blends.
+    records: Vec<f32>,
+    bound: Vec<f32>,
+    bound_upper: Vec<f32>,
+    coef: Vec<f32>,
+    blends: Vec<f32>,
     /// Axis 0 by column: cell, position and fade.
     cell0: Vec<i32>,
     frac0: Vec<f32>,
@@ -520,57 +529,42 @@ struct Tables {
 
 #[cfg(feature = "std")]
 std::thread_local! {
-    static KEPT_TABLES: core::cell::Cell<Tables> = core::cell::Cell::new(Tables::default());
+    static KEPT_TABLES: core::cell::Cell<Option<alloc::boxed::Box<Tables>>> = const { core::cell::Cell::new(None) };
 }
 
+#[cfg(feature = "std")]
 impl Tables {
     /// Most bytes a thread keeps (about 35,000 columns' worth): a fill of
     /// longer rows allocates per call, a small cost beside its work.
-    #[cfg(feature = "std")]
     const KEPT_BYTES: usize = 1 << 20;
 
-    /// This thread's kept vectors (empty the first time).
-    #[cfg(feature = "std")]
-    fn take() -> Self {
-        KEPT_TABLES.with(core::cell::Cell::take)
-    }
-
-    /// Keep the vectors for this thread's next fill, within the bound.
-    #[cfg(feature = "std")]
-    fn keep(self) {
+    /// Forget the vectors if together they hold more than the bound.
+    fn bound(&mut self) {
         fn bytes<T>(v: &Vec<T>) -> usize {
             v.capacity() * core::mem::size_of::<T>()
         }
-        let held = bytes(&self.cell0)
-            + bytes(&self.frac0)
-            + bytes(&self.fade0)
+        let floats = [&self.records, &self.bound, &self.bound_upper, &self.coef, &self.blends, &self.frac0, &self.fade0, &self.frac1, &self.fade1, &self.band_coef];
+        let held = floats.into_iter().map(bytes).sum::<usize>()
+            + bytes(&self.cell0)
+            + bytes(&self.cell1)
             + bytes(&self.runs)
             + bytes(&self.chunks)
             + bytes(&self.chunk_axis)
             + bytes(&self.span_of)
-            + bytes(&self.plane_rows)
-            + bytes(&self.cell1)
-            + bytes(&self.frac1)
-            + bytes(&self.fade1)
-            + bytes(&self.band_coef);
-        if held <= Self::KEPT_BYTES {
-            KEPT_TABLES.with(|kept| kept.set(self));
+            + bytes(&self.plane_rows);
+        if held > Self::KEPT_BYTES {
+            *self = Tables::default();
         }
     }
-
-    /// Without `std` there are no thread-locals: each fill allocates.
-    #[cfg(not(feature = "std"))]
-    fn take() -> Self {
-        Self::default()
-    }
-    #[cfg(not(feature = "std"))]
-    fn keep(self) {}
 }
 
 /// How many runs of equal cells the columns have.
+#[inline(always)]
 fn run_count(cells: &[i32]) -> usize {
-    // Branch-free, so it vectorises.
-    1 + cells.windows(2).map(|pair| usize::from(pair[0] != pair[1])).sum::<usize>()
+    // Branch-free over pairs and inlined into the instruction set's clone,
+    // so it vectorises (`windows` did not: 4 instructions a column).
+    let next = cells.get(1..).unwrap_or_default();
+    1 + next.iter().zip(cells).map(|(b, a)| usize::from(a != b)).sum::<usize>()
 }
 
 /// Runs of equal cells among columns (`count` of them, from [`run_count`]),
@@ -685,8 +679,8 @@ impl<const D: usize> PointRows<D> {
     /// The rows of a plane of cells (`1 << (D − 1)`).
     const PER_PLANE: usize = 1 << (D - 1);
 
-    fn new(fields: Fields, points: usize) -> Self {
-        PointRows { records: Columns::new(2 * Self::PER_PLANE * fields.total(), points), key: [None; MAX_CORNERS] }
+    fn new(kept: &mut Vec<f32>, fields: Fields, points: usize) -> Self {
+        PointRows { records: Columns::kept_in(kept, 2 * Self::PER_PLANE * fields.total(), points), key: [None; MAX_CORNERS] }
     }
 
     /// For each row of the plane of `cell` (row r: upper on axis d + 1 when
@@ -741,9 +735,20 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     span: Span<'_, D>,
     out: &mut [f32],
 ) {
-    let mut tables = Tables::take();
-    fill_span_with::<K, B, D>(kind, span, out, &mut tables);
-    tables.keep();
+    // Boxed, so taking and keeping them moves a pointer, not the vectors'
+    // headers (a memcpy a fill). Not borrowed in place: the fill would then
+    // run in `with`'s closure, which is compiled without the instruction
+    // set of its caller (5× the instructions).
+    #[cfg(feature = "std")]
+    {
+        let mut tables = KEPT_TABLES.with(core::cell::Cell::take).unwrap_or_default();
+        fill_span_with::<K, B, D>(kind, span, out, &mut tables);
+        tables.bound();
+        KEPT_TABLES.with(|kept| kept.set(Some(tables)));
+    }
+    // Without `std` there are no thread-locals: each fill allocates.
+    #[cfg(not(feature = "std"))]
+    fill_span_with::<K, B, D>(kind, span, out, &mut Tables::default());
 }
 
 /// [`fill_span`] with the thread's kept vectors.
@@ -754,7 +759,26 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     out: &mut [f32],
     tables: &mut Tables,
 ) {
-    let Tables { cell0, frac0, fade0, runs, chunks, chunk_axis, span_of, plane_rows, cell1, frac1, fade1, band_coef } = tables;
+    // The tables' vectors as `kept_*`: the names without go to the tables.
+    let Tables {
+        records: kept_records,
+        bound: kept_bound,
+        bound_upper: kept_bound_upper,
+        coef: kept_coef,
+        blends: kept_blends,
+        cell0,
+        frac0,
+        fade0,
+        runs,
+        chunks,
+        chunk_axis,
+        span_of,
+        plane_rows,
+        cell1,
+        frac1,
+        fade1,
+        band_coef,
+    } = tables;
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
     let nx = xs.len();
@@ -820,14 +844,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     let points = ncell + 1;
     let room = points + 3 * w;
     let rows = PointRows::<D>::PER_PLANE;
-    let mut point_rows = PointRows::<D>::new(K::HASHED, room);
-    // Each row's bound records, field-major: the fields a cell's corners read.
-    let bound_fields = rows * K::BOUND.total();
-    let mut bound = Columns::new(if batches || bands { 0 } else { bound_fields }, room);
-    // Fast: each cell's row polynomial.
-    let mut coef = Columns::new(if fast && !bands { 4 } else { 0 }, room);
-    // By plane: the plane's blends along axis 0, by column.
-    let mut blends = Columns::new(if by_plane { rows } else { 0 }, padded);
+    let mut point_rows = PointRows::<D>::new(kept_records, K::HASHED, room);
     // Sized up front, as `runs` is, so that a thread's first fill grows
     // each kept vector once rather than push by push.
     let chunk_total = cols.div_ceil(w) + runs.len();
@@ -849,15 +866,17 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     if batches || bands {
         if bands {
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
-            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), (axis1, band_coef));
+            let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
+            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), (axis1, kept));
         } else {
-            fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, min_cell, points);
+            fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), (&mut point_rows, kept_bound), min_cell, points);
         }
-        for table in [point_rows.records, bound, coef, blends] {
-            table.recycle();
-        }
+        point_rows.records.keep_in(kept_records);
         return;
     }
+    // Each row's bound records, field-major: the fields a cell's corners read.
+    let bound_fields = rows * K::BOUND.total();
+    let mut bound = Columns::kept_in(kept_bound, bound_fields, room);
     // For the per-lane path: cells counted from the smallest.
     for (j, c) in cell0[..padded].iter_mut().enumerate() {
         *c = if j < cols { (*c).wrapping_sub(min_cell) } else { 0 };
@@ -884,11 +903,14 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         }
         let near = reach == Some(Reach::Near);
         fill_fine_rows::<K, B, D>(kind, span, out, chunk_axis, (&mut point_rows, &mut bound), (min_cell, points), near);
-        for table in [point_rows.records, bound, coef, blends] {
-            table.recycle();
-        }
+        point_rows.records.keep_in(kept_records);
+        bound.keep_in(kept_bound);
         return;
     }
+    // Fast: each cell's row polynomial.
+    let mut coef = Columns::kept_in(kept_coef, if fast { 4 } else { 0 }, room);
+    // By plane: the plane's blends along axis 0, by column.
+    let mut blends = Columns::kept_in(kept_blends, if by_plane { rows } else { 0 }, padded);
     // Slices from here on: reached through the kept vectors' headers, their
     // pointers and lengths were loaded again after stores (probe, 2D
     // 6-octave fBm: 2.6 % more instructions than with fresh vectors).
@@ -1026,9 +1048,10 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         band.write::<K, B, D>(kind, &blends, out);
     }
     *plane_rows = band.rows;
-    for table in [point_rows.records, bound, coef, blends] {
-        table.recycle();
-    }
+    point_rows.records.keep_in(kept_records);
+    bound.keep_in(kept_bound);
+    coef.keep_in(kept_coef);
+    blends.keep_in(kept_blends);
 }
 
 /// Rows of one plane of cells waiting to be written together (up to 16):
@@ -1073,14 +1096,14 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     span: Span<'_, D>,
     out: &mut [f32],
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
-    point_rows: &mut PointRows<D>,
+    (point_rows, kept_bound): (&mut PointRows<D>, &mut Vec<f32>),
     min_cell: i32,
     points: usize,
 ) {
     let nx = span.axes.size(0);
     let mut batch = RowBatch::<D> { len: 0, starts: [0; 16], f: [[0.0; 16]; D] };
     // Each point's bound records, 16 rows per field.
-    let mut bound = Columns::new(1, points * PointRows::<D>::PER_PLANE * K::BOUND.total() * 16);
+    let mut bound = Columns::kept_in(kept_bound, 1, points * PointRows::<D>::PER_PLANE * K::BOUND.total() * 16);
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     // Each row's start in the output, cells and positions on axes 1...
@@ -1110,7 +1133,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
         write_batch::<K, B, D>(kind, &mut batch, (chunks, chunk_axis), (&point_rows.records, &slot_of, points), &mut bound, (out, nx));
         batch.len = 0;
     }
-    bound.recycle();
+    bound.keep_in(kept_bound);
 }
 
 /// [`fill_row_batches`]' batch: every point's records bound for the
@@ -1282,7 +1305,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     point_rows: &mut PointRows<D>,
     (min_cell, points): (i32, usize),
-    ((cell1, frac1, fade1), coef): (AxisRows<'_>, &mut Vec<f32>),
+    ((cell1, frac1, fade1), [kept_lower, kept_upper, kept_halves, coef]): (AxisRows<'_>, [&mut Vec<f32>; 4]),
 ) {
     let (nx, ny) = (span.axes.size(0), span.axes.size(1));
     let w = B::WIDTH;
@@ -1290,9 +1313,9 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let ncell = points - 1;
     let room = point_rows.records.stride();
     // The plane's rows' records bound at v = 0 and at v = 1.
-    let mut bound = [Columns::new(rows * K::BOUND.total(), room), Columns::new(rows * K::BOUND.total(), room)];
+    let mut bound = [Columns::kept_in(kept_lower, rows * K::BOUND.total(), room), Columns::kept_in(kept_upper, rows * K::BOUND.total(), room)];
     // Each cell's four half-blends, four coefficients each.
-    let mut halves = Columns::new(16, room);
+    let mut halves = Columns::kept_in(kept_halves, 16, room);
     // Each chunk's band coefficients, chunk by chunk.
     let coef = zeros(coef, chunks.len() * 4 * w);
     // Chunks before `whole` store all their lanes inside the row; the
@@ -1345,12 +1368,15 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
             }
         }
         let views = [bound[0].entries(rows * K::BOUND.total(), 0, room), bound[1].entries(rows * K::BOUND.total(), 0, room)];
+        // Checked once for every cell (each store through `Columns::store`
+        // checked its own bounds: 18 instructions a store).
+        let mut to = halves.entries_mut(16, 0, ncell.div_ceil(w) * w);
         let mut k = 0;
         while k < ncell {
             for (h, weights) in pair_weights.iter().enumerate() {
                 let cells = At { entries: &views[h & 1], at: k };
                 for (m, v) in polynomial(kind, &cells, weights).into_iter().enumerate() {
-                    halves.store(4 * h + m, k, v);
+                    to.store(4 * h + m, k, v);
                 }
             }
             k += w;
@@ -1381,9 +1407,10 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
         r += y1 - y0;
     }
-    for table in bound.into_iter().chain([halves]) {
-        table.recycle();
-    }
+    let [lower, upper] = bound;
+    lower.keep_in(kept_lower);
+    upper.keep_in(kept_upper);
+    halves.keep_in(kept_halves);
 }
 
 /// A chunk's four half-blends ([`fill_bands`]) at its positions along axis

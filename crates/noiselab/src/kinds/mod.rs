@@ -115,6 +115,22 @@ impl Columns {
         Columns { stride: entries, fields, data }
     }
 
+    /// [`Columns::new`] in `kept`, a vector its caller keeps between fills
+    /// (left empty until [`Columns::keep_in`] puts it back): no trip
+    /// through the scratch pool, which cost a 32² tile of 2D improved
+    /// noise about 230 instructions a table (callgrind, probe, AVX2).
+    pub(crate) fn kept_in(kept: &mut Vec<f32>, fields: usize, entries: usize) -> Self {
+        let mut data = core::mem::take(kept);
+        data.clear();
+        data.resize(fields * entries, 0.0);
+        Columns { stride: entries, fields, data }
+    }
+
+    /// Put the buffer back where [`Columns::kept_in`] took it from.
+    pub(crate) fn keep_in(self, kept: &mut Vec<f32>) {
+        *kept = self.data;
+    }
+
     /// Give the buffer back for the next table on this thread. (A method,
     /// not `Drop`: drop glue in the grid fills' kernels measured 5 % slower
     /// on 2D fBm.)
