@@ -562,8 +562,10 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         }
         // Whole rows per block where rows are short, so octaves see whole rows.
         let block = if nx < BLOCK { BLOCK / nx * nx } else { BLOCK };
-        // Octave i's values from i · stride (a buffer kept by the thread).
-        let stride = block + w;
+        // Octave i's values from i · stride (a buffer kept by the thread),
+        // no longer than the span needs: a 32² tile took 6 × 2¹⁷ values,
+        // which the thread's first tile zeroed.
+        let stride = block.min(out.len()) + w;
         let mut buffers = crate::scratch::take(count * stride);
         let mut amplitudes = [B::cst(0.0); MAX_OCTAVES as usize];
         for (lanes, &a) in amplitudes.iter_mut().zip(&self.steps.amplitude).take(count) {
