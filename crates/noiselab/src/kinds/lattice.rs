@@ -539,7 +539,7 @@ impl Tables {
     const KEPT_BYTES: usize = 1 << 20;
 
     /// Forget the vectors if together they hold more than the bound.
-    fn bound(&mut self) {
+    fn keep_within_bound(&mut self) {
         fn bytes<T>(v: &Vec<T>) -> usize {
             v.capacity() * core::mem::size_of::<T>()
         }
@@ -743,7 +743,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     {
         let mut tables = KEPT_TABLES.with(core::cell::Cell::take).unwrap_or_default();
         fill_span_with::<K, B, D>(kind, span, out, &mut tables);
-        tables.bound();
+        tables.keep_within_bound();
         KEPT_TABLES.with(|kept| kept.set(Some(tables)));
     }
     // Without `std` there are no thread-locals: each fill allocates.

@@ -108,11 +108,7 @@ impl Columns {
     /// per-thread scratch buffer ([`crate::scratch`]): hand it back with
     /// [`Columns::recycle`].
     pub(crate) fn new(fields: usize, entries: usize) -> Self {
-        let len = fields * entries;
-        let mut data = crate::scratch::take(len);
-        data.truncate(len);
-        data.fill(0.0);
-        Columns { stride: entries, fields, data }
+        Self::kept_in(&mut crate::scratch::take(fields * entries), fields, entries)
     }
 
     /// [`Columns::new`] in `kept`, a vector its caller keeps between fills
