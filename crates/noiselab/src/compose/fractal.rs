@@ -695,8 +695,8 @@ impl<N> Fractal<N> {
     /// that was non-finite stays so, so a finite result means every octave
     /// was finite and the guard would have changed nothing. Only a chunk
     /// whose result is not finite (an octave that overflowed) is combined
-    /// again with the guard. (The guard was 4 of ~13 instructions an
-    /// octave a chunk.)
+    /// again with the guard. (On AVX2 the guard was 4 of the 9
+    /// instructions an octave took a chunk.)
     #[inline(always)]
     fn combine_in_order<B: BatchLanes>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32]) {
         let count = filled.count;
