@@ -657,7 +657,8 @@ impl<B: BatchLanes> Source<B> for Gathered<'_, B> {
 
 /// Lanes' worth of columns in one cell: columns `start..start + WIDTH`, of
 /// which those before `end` are the cell's (the rest belong to later
-/// chunks), in cell `cell`.
+/// chunks), in cell `cell`. (For [`fill_bands`] over cells narrower than
+/// the lanes: aligned chunks, `cell` the first of their cells.)
 #[derive(Clone, Copy)]
 struct Chunk {
     start: usize,
@@ -818,11 +819,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     // Fast, whole rows, and cells that hold several rows along axis 1:
     // down the columns, a band of rows at a time ([`fill_bands`]).
     // (Axis 1 by row, as axis 0 by column, kept for the bands.)
-    let bands = fast && D >= 2 && whole_rows && {
-        let ny = span.axes.size(1);
-        split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w);
-        ny >= BAND_ROWS * run_count(&cell1[..ny])
-    };
+    let bands = fast && D >= 2 && whole_rows && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1));
     // Whole rows of long runs, exact, with few enough lattice points that a
     // batch's bound records stay in L1 beside the rows: rows in batches,
     // each point's records bound for a batch at once ([`fill_row_batches`]).
@@ -867,7 +864,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         if bands {
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
             let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
-            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points), (axis1, kept));
+            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points, false), (axis1, kept));
         } else {
             fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), (&mut point_rows, kept_bound), min_cell, points);
         }
@@ -902,6 +899,17 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             chunk_axis.push(a);
         }
         let near = reach == Some(Reach::Near);
+        // Fast, with cells narrower than the lanes but holding several rows
+        // (2D at 1/4 on AVX2): down the columns too, each lane reading its
+        // own cell's coefficients.
+        if near && span.accuracy == Accuracy::Fast && D >= 2 && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1)) {
+            chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk { start: k * w, end: (k * w + w).min(cols), cell: a.first }));
+            let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
+            let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
+            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
+            point_rows.records.keep_in(kept_records);
+            return;
+        }
         fill_fine_rows::<K, B, D>(kind, span, out, chunk_axis, (&mut point_rows, &mut bound), (min_cell, points), near);
         point_rows.records.keep_in(kept_records);
         bound.keep_in(kept_bound);
@@ -968,7 +976,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             let mut k = 0;
             while k < ncell {
                 let cells = At { entries: &view, at: k };
-                for (m, v) in polynomial(kind, &cells, &pair_weights).into_iter().enumerate() {
+                for (m, v) in polynomial(kind, &cells, &pair_weights, (0, 1)).into_iter().enumerate() {
                     coef.store(m, k, v);
                 }
                 k += w;
@@ -1286,6 +1294,19 @@ impl<B: BatchLanes, const D: usize> FineRow<'_, B, D> {
 /// points do).
 const BAND_ROWS: usize = 4;
 
+/// Whether cells along axis 1 hold [`BAND_ROWS`] rows or more on average,
+/// for [`fill_bands`]; axis 1 split into `cell1, frac1, fade1` by the way.
+#[inline(always)]
+fn tall_cells<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    span: &Span<'_, D>,
+    (cell1, frac1, fade1): (&mut Vec<i32>, &mut Vec<f32>, &mut Vec<f32>),
+) -> bool {
+    let ny = span.axes.size(1);
+    split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(B::WIDTH) * B::WIDTH);
+    ny >= BAND_ROWS * run_count(&cell1[..ny])
+}
+
 /// [`Accuracy::Fast`]'s fill of whole rows where cells hold several rows
 /// along axis 1. A band is the rows of one cell along axis 1 at one
 /// position on axes 2..; inside it every column's value is `P(v) +
@@ -1296,7 +1317,9 @@ const BAND_ROWS: usize = 4;
 /// rather than once per row. They come from the row polynomials along
 /// axis 0 ([`polynomial`]) of the cell's lower and upper corners on axis 1,
 /// bound at `v` = 0 and 1: since every corner is linear in its offsets,
-/// those four half-blends fix the band.
+/// those four half-blends fix the band. `narrow`: cells narrower than the
+/// lanes (the fine rows' chunks), each lane reading its own cell's
+/// half-blends.
 #[inline(always)]
 fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
@@ -1304,7 +1327,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     out: &mut [f32],
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     point_rows: &mut PointRows<D>,
-    (min_cell, points): (i32, usize),
+    (min_cell, points, narrow): (i32, usize, bool),
     ((cell1, frac1, fade1), [kept_lower, kept_upper, kept_halves, coef]): (AxisRows<'_>, [&mut Vec<f32>; 4]),
 ) {
     let (nx, ny) = (span.axes.size(0), span.axes.size(1));
@@ -1375,15 +1398,24 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         while k < ncell {
             for (h, weights) in pair_weights.iter().enumerate() {
                 let cells = At { entries: &views[h & 1], at: k };
-                for (m, v) in polynomial(kind, &cells, weights).into_iter().enumerate() {
+                // Only the pairs on h's side of axis 1 weigh anything.
+                for (m, v) in polynomial(kind, &cells, weights, (h >> 1, 2)).into_iter().enumerate() {
                     to.store(4 * h + m, k, v);
                 }
             }
             k += w;
         }
-        // Each chunk's coefficients from its cell's half-blends.
+        // Each chunk's coefficients from its cell's half-blends (a chunk of
+        // narrow cells: each lane's from its own cell, within one register
+        // from the chunk's first).
+        let narrow_view = halves.entries(16, 0, ncell.div_ceil(w) * w + w);
         for ((ch, axis), to) in chunks.iter().zip(chunk_axis).zip(coef.chunks_exact_mut(4 * w)) {
-            let half = half_blends::<K, B, D>(axis, &OneCell::new(&halves, ch.cell, 16));
+            let half = if narrow {
+                let lane = B::load_int(&axis.lane);
+                half_blends::<K, B, D>(axis, &PerLane::<B, true> { entries: &narrow_view, first: axis.first, lane: [lane, lane] })
+            } else {
+                half_blends::<K, B, D>(axis, &OneCell::new(&halves, ch.cell, 16))
+            };
             let p1 = half[1] - half[0];
             let band_coef = [half[0], p1, half[2] - half[0], (half[3] - half[2]) - p1];
             for (m, v) in band_coef.into_iter().enumerate() {
@@ -1397,6 +1429,17 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let band_out = &mut out[at..at + (y1 - y0) * nx];
         for ((row, &v), &s) in band_out.chunks_exact_mut(nx).zip(&frac1[y0..y1]).zip(&fade1[y0..y1]) {
             let (v, s) = (B::splat(v), B::splat(s));
+            if narrow {
+                // Aligned chunks: no start to read and check per chunk.
+                let mut lanes = row.chunks_exact_mut(w);
+                for (out, c) in (&mut lanes).zip(coef_whole.chunks_exact(4 * w)) {
+                    band_value::<B>(c, v, s).store(out);
+                }
+                if let Some(c) = coef_end.get(..4 * w) {
+                    emit(band_value::<B>(c, v, s), lanes.into_remainder());
+                }
+                continue;
+            }
             // Lanes past a chunk's cell are written again by the next chunk.
             for (ch, c) in chunks[..whole].iter().zip(coef_whole.chunks_exact(4 * w)) {
                 band_value::<B>(c, v, s).store(&mut row[ch.start..ch.start + w]);
@@ -1667,15 +1710,16 @@ fn emit<B: BatchLanes>(v: B, out: &mut [f32]) {
 /// [`Accuracy::Fast`]'s coefficients for a block of cells: the row inside
 /// each cell is `(p₀ + p₁·u) + s(u)·(q₀ + q₁·u)`, from the cells' bound
 /// corners (`eval` is affine in u) weighted by the row's fixed blend over
-/// axes 1...
+/// axes 1... Pairs `first, first + step, …` only: the others weigh 0.
 #[inline(always)]
 fn polynomial<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     bound: &impl Source<B>,
     pair_weights: &[B; MAX_CORNERS / 2],
+    (first, step): (usize, usize),
 ) -> [B; 4] {
     let mut sum = [B::cst(0.0); 4];
-    for k in 0..(1 << (D - 1)) {
+    for k in (first..1 << (D - 1)).step_by(step) {
         // Corners 2k and 2k + 1 differ on axis 0: A(u) = a + b·u (lower
         // corner, offset u) and B(u) − A(u) = c + d·u (upper, offset u − 1).
         let lo = bound.corner(2 * k, K::BOUND);

@@ -25,6 +25,9 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         Grid::new([-250.5; D], [1.3; D], size(90, rest)),
         Grid::new([5.0; D], [-0.045; D], size(120, rest)),
         Grid::new([1000.25; D], [1.0 / 64.0; D], size(260, rest)),
+        // Cells narrower than AVX2's and AVX-512's lanes along axis 0 and
+        // tall enough for bands along axis 1 (in 3D and 4D as well).
+        Grid::new([0.13; D], [0.25; D], core::array::from_fn(|d| [130, 40, 3, 2][d])),
     ]
 }
 
@@ -120,6 +123,9 @@ fn fast_spans_of_whole_rows_equal_the_whole_grid() {
     check_spans(&Improved::new(4), Grid::new([-0.4, 2.1], [1.0 / 32.0, 1.0 / 24.0], [50, 70]));
     check_spans(&Improved::new(4), Grid::new([0.3, -1.0, 0.45], [1.0 / 32.0, 1.0 / 20.0, 0.3], [43, 30, 4]));
     check_spans(&Improved::new(9), Grid::new([5.5, 0.0, -2.0, 0.1], [0.05, 0.04, 0.5, 0.7], [33, 26, 2, 2]));
+    // Cells narrower than the lanes (AVX2, AVX-512), five rows each.
+    check_spans(&Improved::new(4), Grid::new([0.2, -0.7], [0.25, 0.2], [61, 50]));
+    check_spans(&Value::new(6), Grid::new([0.1, 0.3, -0.2], [0.25, 0.2, 0.5], [45, 33, 3]));
 }
 
 #[inline(never)]
