@@ -85,6 +85,14 @@ fn fbm6_2d_256x256((grid, mut out): (Grid<2>, Vec<f32>)) -> Vec<f32> {
 }
 
 #[library_benchmark]
+#[bench::fbm6_fast(setup = grid2)]
+fn fbm6_2d_fast_256x256((grid, mut out): (Grid<2>, Vec<f32>)) -> Vec<f32> {
+    let fbm = Fractal::new(|o| Improved::new(o.seed), 1337, 6, FractalMode::Fbm).unwrap();
+    Noise::<2>::fill_grid_fast(black_box(&fbm), &grid, &mut out).unwrap();
+    out
+}
+
+#[library_benchmark]
 #[bench::improved(setup = tiles2)]
 fn improved_2d_64_tiles_of_32x32((tiles, mut out): (Vec<Grid<2>>, Vec<f32>)) -> Vec<f32> {
     let noise = Improved::new(1337);
@@ -141,6 +149,7 @@ library_benchmark_group!(
         value_2d_256x256,
         cellular_f1_2d_256x256,
         fbm6_2d_256x256,
+        fbm6_2d_fast_256x256,
         improved_2d_64_tiles_of_32x32,
         fbm6_2d_64_tiles_of_32x32,
         improved_3d_32x32x32,
