@@ -1344,6 +1344,10 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // Chunks before `whole` store all their lanes inside the row; the
     // rest, at its end, store as many as fit.
     let whole = chunks.partition_point(|ch| ch.start + w <= nx);
+    // Chunk k at column k · w (narrow chunks, and runs of whole lanes: 2D
+    // at 1/32, 32² tiles): each row is stored lane by lane, with no start
+    // to read and check per chunk.
+    let aligned = narrow || chunks.iter().enumerate().all(|(k, ch)| ch.start == k * w);
     // Grid rows `first_row..end_row`; whole rows, so row r starts at
     // (r − first_row) · nx in `out`.
     let first_row = span.start / nx;
@@ -1429,8 +1433,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let band_out = &mut out[at..at + (y1 - y0) * nx];
         for ((row, &v), &s) in band_out.chunks_exact_mut(nx).zip(&frac1[y0..y1]).zip(&fade1[y0..y1]) {
             let (v, s) = (B::splat(v), B::splat(s));
-            if narrow {
-                // Aligned chunks: no start to read and check per chunk.
+            if aligned {
                 let mut lanes = row.chunks_exact_mut(w);
                 for (out, c) in (&mut lanes).zip(coef_whole.chunks_exact(4 * w)) {
                     band_value::<B>(c, v, s).store(out);
