@@ -237,16 +237,23 @@ fn check_on_integers<N: Noise<D>, const D: usize>(name: &str, make: impl Fn(u32)
     for mode in FractalMode::ALL {
         let fractal = Fractal::new(|o| make(o.seed), 4, 6, mode).unwrap();
         for grid in grids {
-            let points: Vec<f32> = (0..grid.len()).map(|i| fractal.get_f32(grid.point(i))).collect();
-            for level in SimdLevel::available() {
-                let mut out = vec![f32::NAN; grid.len()];
-                fill_grid_at(level, &fractal, grid, &mut out, Accuracy::Exact).unwrap();
-                for (i, (&v, &p)) in out.iter().zip(&points).enumerate() {
-                    assert_eq!(v.to_bits(), p.to_bits(), "{name} {mode:?} {level:?} {grid:?}: point {i} at {:?}", grid.point(i));
-                }
-            }
+            grid_equals_points(&fractal, grid, &format!("{name} {mode:?}"));
         }
     }
+}
+
+/// `noise`'s exact fill of `grid` at every instruction-set level gives its
+/// point values bit for bit; returns them.
+fn grid_equals_points<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>, what: &str) -> Vec<f32> {
+    let points: Vec<f32> = (0..grid.len()).map(|i| noise.get_f32(grid.point(i))).collect();
+    for level in SimdLevel::available() {
+        let mut out = vec![f32::NAN; grid.len()];
+        fill_grid_at(level, noise, grid, &mut out, Accuracy::Exact).unwrap();
+        for (i, (&v, &p)) in out.iter().zip(&points).enumerate() {
+            assert_eq!(v.to_bits(), p.to_bits(), "{what} {level:?} {grid:?}: point {i} at {:?}", grid.point(i));
+        }
+    }
+    points
 }
 
 #[test]
@@ -285,13 +292,7 @@ fn fractal_grids_of_every_octave_count_equal_their_points() {
     for octaves in 1..=10 {
         for mode in FractalMode::ALL {
             let fractal = Fractal::new(|o| Improved::new(o.seed), 6, octaves, mode).unwrap();
-            let points: Vec<u32> = (0..grid.len()).map(|i| fractal.get_f32(grid.point(i)).to_bits()).collect();
-            for level in SimdLevel::available() {
-                let mut out = vec![f32::NAN; grid.len()];
-                fill_grid_at(level, &fractal, &grid, &mut out, Accuracy::Exact).unwrap();
-                let got: Vec<u32> = out.iter().map(|v| v.to_bits()).collect();
-                assert_eq!(got, points, "{octaves} octaves, {mode:?}, {level:?}");
-            }
+            grid_equals_points(&fractal, &grid, &format!("{octaves} octaves, {mode:?}"));
         }
     }
 }
@@ -306,14 +307,8 @@ fn fractal_grids_whose_octaves_overflow_equal_their_points() {
     for octaves in [3, 6, 9] {
         for mode in FractalMode::ALL {
             let fractal = Fractal::new(|o| Improved::new(o.seed), 2, octaves, mode).unwrap();
-            let points: Vec<u32> = (0..grid.len()).map(|i| fractal.get_f32(grid.point(i)).to_bits()).collect();
-            assert!(points.iter().all(|&b| f32::from_bits(b).is_finite()), "{mode:?}: finite input, finite values");
-            for level in SimdLevel::available() {
-                let mut out = vec![f32::NAN; grid.len()];
-                fill_grid_at(level, &fractal, &grid, &mut out, Accuracy::Exact).unwrap();
-                let got: Vec<u32> = out.iter().map(|v| v.to_bits()).collect();
-                assert_eq!(got, points, "{octaves} octaves, {mode:?}, {level:?}");
-            }
+            let points = grid_equals_points(&fractal, &grid, &format!("{octaves} octaves, {mode:?}"));
+            assert!(points.iter().all(|v| v.is_finite()), "{mode:?}: finite input, finite values");
         }
     }
 }
