@@ -1344,10 +1344,10 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // Chunks before `whole` store all their lanes inside the row; the
     // rest, at its end, store as many as fit.
     let whole = chunks.partition_point(|ch| ch.start + w <= nx);
-    // Chunk k at column k · w (narrow chunks, and runs of whole registers:
-    // 2D at 1/32, 32² tiles): each row is stored a register at a time,
-    // with no start to read and check per chunk.
-    let aligned = narrow || chunks.iter().enumerate().all(|(k, ch)| ch.start == k * w);
+    // Chunk k at column k · w (every narrow band, and runs of whole
+    // registers: 2D at 1/32, 32² tiles): each row is stored a register at
+    // a time, with no start to read and check per chunk.
+    let aligned = chunks.iter().enumerate().all(|(k, ch)| ch.start == k * w);
     // Grid rows `first_row..end_row`; whole rows, so row r starts at
     // (r − first_row) · nx in `out`.
     let first_row = span.start / nx;
