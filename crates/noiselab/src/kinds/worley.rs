@@ -565,8 +565,9 @@ impl Worley {
             }
             k = end;
         }
-        // The chunks that need ring 2, by the point path: out of the loop
-        // above, whose registers then hold the run's feature points.
+        // The chunks that need ring 2 (and a short last one), by the point
+        // path: out of the loop above, whose registers then hold the run's
+        // feature points.
         for &k in redo.iter() {
             let count = (n - k).min(w);
             self.row_by_points::<B, D>(row.p, row.xs, i0 + k, &mut out[k..k + count]);
@@ -575,9 +576,10 @@ impl Worley {
     }
 
     /// Chunks of a grid row from column `i` on whose lanes find their
-    /// cells' feature points in `near`, into `out`; those that need ring 2
-    /// are left to the caller, their offsets from the row piece's start
-    /// (`out` starting `from` into it) pushed onto `redo`.
+    /// cells' feature points in `near`, into `out`; those that need ring 2,
+    /// and a last chunk short of the lanes, are left to the caller, their
+    /// offsets from the row piece's start (`out` starting `from` into it)
+    /// pushed onto `redo`.
     #[inline(always)]
     fn run<B: BatchLanes, const D: usize>(
         &self,
@@ -590,23 +592,29 @@ impl Worley {
     ) where
         Worley: Noise<D>,
     {
-        let n = out.len();
-        let mut k = 0;
-        while k < n {
-            let count = (n - k).min(B::WIDTH);
-            // One check for the column's three fields.
-            let column = row.along.entries(3, i + k - row.lo, B::WIDTH);
-            let frac0 = column.load::<B>(COLUMN_FRAC, 0);
+        let w = B::WIDTH;
+        // Whole chunks only: a row's last, partial chunk goes to the point
+        // path with those that need ring 2 (a second copy of the chunk
+        // loop for it would double this code; a per-chunk count cost
+        // stores and checks in every chunk).
+        let whole = out.len() / w * w;
+        // One check for every chunk's three column fields.
+        let columns = row.along.entries(3, i - row.lo, whole);
+        for (c, out) in out[..whole].chunks_exact_mut(w).enumerate() {
+            let k = c * w;
+            let frac0 = columns.load::<B>(COLUMN_FRAC, k);
             // `split`'s edge is the smaller of the column's and the row's
             // (`min` is exact and commutes), and `ring_bound` is monotone
             // in it (rounding is), so its bound is the smaller bound.
-            let edge = column.load::<B>(COLUMN_EDGE, 0).min(row.edge);
-            let ring2 = column.load::<B>(COLUMN_RING2, 0).min(row.ring2);
-            match self.chunk_k::<B, D>(frac0, edge, ring2, &near.columns(row.xs, i + k, count), near) {
-                Some(v) => store_prefix(v, &mut out[k..k + count]),
+            let edge = columns.load::<B>(COLUMN_EDGE, k).min(row.edge);
+            let ring2 = columns.load::<B>(COLUMN_RING2, k).min(row.ring2);
+            match self.chunk_k::<B, D>(frac0, edge, ring2, &near.columns(row.xs, i + k, w), near) {
+                Some(v) => v.store(out),
                 None => redo.push(from + k),
             }
-            k += count;
+        }
+        if whole < out.len() {
+            redo.push(from + whole);
         }
     }
 
