@@ -6,7 +6,7 @@
 use alloc::vec::Vec;
 
 use super::ComposeError;
-use crate::grid::{store_prefix, Axes, RowPiece, Span};
+use crate::grid::{store_prefix, Axes, RowPiece, SimdLevel, Span};
 use crate::lanes::{BatchLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
 
@@ -373,20 +373,7 @@ impl<N> Fractal<N> {
     /// gives octave i's noise (value or value + gradient).
     #[inline(always)]
     fn combine<T: Arith>(&self, octaves: &impl Octaves<T>) -> T {
-        self.combine_as(self.mode, self.octaves.len(), octaves)
-    }
-
-    /// [`Fractal::combine`] over the first `count` octaves, in `mode` (a
-    /// constant where the caller dispatches on the mode once, so the loop
-    /// has no branch on it).
-    #[inline(always)]
-    fn combine_as<T: Arith>(&self, mode: FractalMode, count: usize, octaves: &impl Octaves<T>) -> T {
-        let mut state = OctaveSum::start();
-        for i in 0..count {
-            let amplitude = octaves.amplitude(i, self.steps.amplitude[i]);
-            state.add_octave(mode, i, octaves.octave(i, self.steps.frequency[i]), amplitude);
-        }
-        state.sum.scale_by(octaves.normalization(self.steps.scale[count - 1]))
+        self.steps.combine(self.mode, self.octaves.len(), octaves)
     }
 }
 
@@ -612,10 +599,6 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         // which the thread's first tile zeroed.
         let stride = block.min(out.len()) + w;
         let mut buffers = crate::scratch::take(count * stride);
-        let mut amplitudes = [B::cst(0.0); MAX_OCTAVES as usize];
-        for (lanes, &a) in amplitudes.iter_mut().zip(&self.steps.amplitude).take(count) {
-            *lanes = B::cst(a);
-        }
         // Where every coordinate is finite, point evaluation's NaN guard
         // passes every value: the combine needs no positions.
         let finite = span.axes.all_finite();
@@ -640,10 +623,17 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                     noise.dispatch_span(B::LEVEL, Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
                 }
             }
-            let part = (!finite).then_some(Span { axes: span.axes, start, accuracy: span.accuracy });
-            let normalization = B::cst(self.steps.scale[count - 1]);
-            let filled = Filled::new(&buffers[..], stride, count, (&amplitudes[..], normalization));
-            self.combine_block::<B, D>(part, filled, &mut out[done..done + len]);
+            let block_out = &mut out[done..done + len];
+            if finite {
+                let octaves = OctaveBuffers { values: &buffers[..], stride, count };
+                combine_finite(B::LEVEL, &self.steps, self.mode, octaves, block_out);
+            } else {
+                let part = Span { axes: span.axes, start, accuracy: span.accuracy };
+                let amplitudes = self.steps.lane_amplitudes::<B>(count);
+                let normalization = B::cst(self.steps.scale[count - 1]);
+                let filled = Filled::new(&buffers[..], stride, count, (&amplitudes[..], normalization));
+                self.combine_with_positions::<B, D>(part, filled, block_out);
+            }
             done += len;
         }
         crate::scratch::give_back(buffers);
@@ -654,32 +644,26 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
 }
 
 impl<N> Fractal<N> {
-    /// The grid fill's second pass over a block (`part`, `out.len()`
-    /// points): the octave loop over the filled octaves (`filled`,
-    /// from `at` 0), point by point. `part` is `None` where every
-    /// coordinate is finite: the octaves then combine in output order, a
-    /// chunk of lanes at a time across rows (callgrind, probe, 6-octave fBm
-    /// over 32² tiles: this pass 378 → 296 M instructions, against row by
-    /// row with positions).
+    /// The grid fill's second pass over a block of `part` where some
+    /// coordinate is not finite: the octave loop over the filled octaves
+    /// (`filled`, from `at` 0), point by point with positions, NaN where a
+    /// coordinate is not finite (as point evaluation). Where every
+    /// coordinate is finite, [`combine_finite`] needs no positions.
     #[inline(always)]
-    fn combine_block<B: BatchLanes, const D: usize>(&self, part: Option<Span<'_, D>>, filled: Filled<'_, B>, out: &mut [f32]) {
+    fn combine_with_positions<B: BatchLanes, const D: usize>(&self, part: Span<'_, D>, filled: Filled<'_, B>, out: &mut [f32]) {
         // The mode dispatched once per block.
         match self.mode {
-            FractalMode::Fbm => self.combine_block_as::<B, D>(FractalMode::Fbm, part, filled, out),
-            FractalMode::Turbulence => self.combine_block_as::<B, D>(FractalMode::Turbulence, part, filled, out),
-            FractalMode::Ridged => self.combine_block_as::<B, D>(FractalMode::Ridged, part, filled, out),
-            FractalMode::Billow => self.combine_block_as::<B, D>(FractalMode::Billow, part, filled, out),
-            FractalMode::Hybrid => self.combine_block_as::<B, D>(FractalMode::Hybrid, part, filled, out),
+            FractalMode::Fbm => self.combine_with_positions_as::<B, D>(FractalMode::Fbm, part, filled, out),
+            FractalMode::Turbulence => self.combine_with_positions_as::<B, D>(FractalMode::Turbulence, part, filled, out),
+            FractalMode::Ridged => self.combine_with_positions_as::<B, D>(FractalMode::Ridged, part, filled, out),
+            FractalMode::Billow => self.combine_with_positions_as::<B, D>(FractalMode::Billow, part, filled, out),
+            FractalMode::Hybrid => self.combine_with_positions_as::<B, D>(FractalMode::Hybrid, part, filled, out),
         }
     }
 
-    /// [`Fractal::combine_block`] in `mode`.
+    /// [`Fractal::combine_with_positions`] in `mode`.
     #[inline(always)]
-    fn combine_block_as<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Option<Span<'_, D>>, filled: Filled<'_, B>, out: &mut [f32]) {
-        let Some(part) = part else {
-            self.combine_in_order::<B>(mode, filled, out);
-            return;
-        };
+    fn combine_with_positions_as<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Span<'_, D>, filled: Filled<'_, B>, out: &mut [f32]) {
         let w = B::WIDTH;
         let xs = part.axes.axis(0);
         for RowPiece { idx, first, offset, len: n } in part.rows(out.len()) {
@@ -692,17 +676,129 @@ impl<N> Fractal<N> {
                 let at = offset + k;
                 p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
                 // NaN where any coordinate is not finite, as point evaluation.
-                let v = crate::kinds::finite_or_nan(p, self.combine_as(mode, filled.count, &Filled { at, ..filled }));
+                let v = crate::kinds::finite_or_nan(p, self.steps.combine(mode, filled.count, &Filled { at, ..filled }));
                 let count = (n - k).min(w);
                 store_prefix(v, &mut out[at..at + count]);
                 k += w;
             }
         }
     }
+}
 
-    /// [`Fractal::combine_block_as`] where every coordinate is finite: in
-    /// output order, [`COMBINE_RUN`] chunks of lanes at a time, octave by
-    /// octave across the run. Each point still takes its octaves in order,
+/// A block's octaves as filled: octave i's values from `i · stride` in
+/// `values`, the first `count` octaves.
+#[derive(Clone, Copy)]
+struct OctaveBuffers<'a> {
+    values: &'a [f32],
+    stride: usize,
+    count: usize,
+}
+
+/// [`Steps::combine_finite`] at `level` (the best the CPU has up to it).
+/// One clone per level for every fractal: the combine needs neither the
+/// noise nor the dimension, and inlined into each fractal's fill it was
+/// compiled again for every noise type, dimension and level (with its
+/// loops unrolled per octave count, the test suite's build then ran past
+/// 40 minutes).
+fn combine_finite(level: SimdLevel, steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+    // SAFETY: `runnable` never exceeds the features the CPU reports, and
+    // the baseline clone needs none.
+    unsafe {
+        match crate::grid::runnable(level) {
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            SimdLevel::Avx512 => combine_clones::avx512(steps, mode, octaves, out),
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            SimdLevel::Avx2 => combine_clones::avx2(steps, mode, octaves, out),
+            _ => combine_clones::baseline(steps, mode, octaves, out),
+        }
+    }
+}
+
+/// [`combine_finite`]'s clones, one per instruction-set level.
+mod combine_clones {
+    use super::{FractalMode, OctaveBuffers, Steps};
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
+    pub(super) unsafe fn avx512(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+        steps.combine_finite::<crate::lanes::avx512::X16>(mode, octaves, out)
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn avx2(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+        steps.combine_finite::<crate::lanes::avx2::X8>(mode, octaves, out)
+    }
+
+    pub(super) unsafe fn baseline(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+        steps.combine_finite::<crate::lanes::F32x8>(mode, octaves, out)
+    }
+}
+
+impl Steps {
+    /// The octave loop over the first `count` octaves, in `mode` (a
+    /// constant where the caller dispatches on the mode once, so the loop
+    /// has no branch on it).
+    #[inline(always)]
+    fn combine<T: Arith>(&self, mode: FractalMode, count: usize, octaves: &impl Octaves<T>) -> T {
+        let mut state = OctaveSum::start();
+        for i in 0..count {
+            let amplitude = octaves.amplitude(i, self.amplitude[i]);
+            state.add_octave(mode, i, octaves.octave(i, self.frequency[i]), amplitude);
+        }
+        state.sum.scale_by(octaves.normalization(self.scale[count - 1]))
+    }
+
+    /// The first `count` amplitudes in lanes, formed once per block rather
+    /// than per octave and chunk.
+    #[inline(always)]
+    fn lane_amplitudes<B: BatchLanes>(&self, count: usize) -> [B; MAX_OCTAVES as usize] {
+        let mut lanes = [B::cst(0.0); MAX_OCTAVES as usize];
+        for (lanes, &a) in lanes.iter_mut().zip(&self.amplitude).take(count) {
+            *lanes = B::cst(a);
+        }
+        lanes
+    }
+
+    /// The grid fill's second pass over a block where every coordinate is
+    /// finite (point evaluation's NaN guard then passes every value, so no
+    /// positions are needed): the octave loop over the filled octaves in
+    /// output order, the mode dispatched once per block.
+    #[inline(always)]
+    fn combine_finite<B: BatchLanes>(&self, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+        let amplitudes = self.lane_amplitudes::<B>(octaves.count);
+        let normalization = B::cst(self.scale[octaves.count - 1]);
+        let filled = Filled::new(octaves.values, octaves.stride, octaves.count, (&amplitudes[..], normalization));
+        match mode {
+            FractalMode::Fbm => self.combine_finite_as::<B>(FractalMode::Fbm, filled, out),
+            FractalMode::Turbulence => self.combine_finite_as::<B>(FractalMode::Turbulence, filled, out),
+            FractalMode::Ridged => self.combine_finite_as::<B>(FractalMode::Ridged, filled, out),
+            FractalMode::Billow => self.combine_finite_as::<B>(FractalMode::Billow, filled, out),
+            FractalMode::Hybrid => self.combine_finite_as::<B>(FractalMode::Hybrid, filled, out),
+        }
+    }
+
+    /// [`Steps::combine_finite`] in `mode`: up to 8 octaves (fBm's usual 4–8)
+    /// in registers, chunk by chunk; more, octave by octave through a run
+    /// of sums.
+    #[inline(always)]
+    fn combine_finite_as<B: BatchLanes>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32]) {
+        match filled.count {
+            1 => self.combine_by_chunk::<B, 1>(mode, filled, out),
+            2 => self.combine_by_chunk::<B, 2>(mode, filled, out),
+            3 => self.combine_by_chunk::<B, 3>(mode, filled, out),
+            4 => self.combine_by_chunk::<B, 4>(mode, filled, out),
+            5 => self.combine_by_chunk::<B, 5>(mode, filled, out),
+            6 => self.combine_by_chunk::<B, 6>(mode, filled, out),
+            7 => self.combine_by_chunk::<B, 7>(mode, filled, out),
+            8 => self.combine_by_chunk::<B, 8>(mode, filled, out),
+            _ => self.combine_in_order::<B>(mode, filled, out),
+        }
+    }
+
+    /// [`Steps::combine_finite`] for any count of octaves: in output order,
+    /// [`COMBINE_RUN`] chunks of lanes at a time, octave by octave across
+    /// the run. Each point still takes its octaves in order,
     /// so the bits are the octave loop's; but the loop's bookkeeping and the
     /// octave's amplitude are paid once per octave and run, not per chunk,
     /// and the run's sums stay in L1.
@@ -740,13 +836,47 @@ impl<N> Fractal<N> {
         }
     }
 
-    /// A chunk of [`Fractal::combine_in_order`] from its unguarded sum,
+    /// [`Steps::combine_in_order`] for exactly `COUNT` octaves: a chunk at a
+    /// time, its octaves summed in a register with their amplitudes
+    /// held in registers, so nothing but the octave values is loaded and
+    /// only the result is stored (6 octaves on AVX2: 32 instructions a
+    /// chunk, against 48 through a run of sums in memory). The same octaves
+    /// in the same order: the same bits.
+    #[inline(always)]
+    fn combine_by_chunk<B: BatchLanes, const COUNT: usize>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32]) {
+        let w = B::WIDTH;
+        // Loops, not `array::from_fn`, whose closures LLVM may leave out of
+        // line, outside the instruction-set clone.
+        let mut amplitudes = [B::cst(0.0); COUNT];
+        let mut octaves = [core::ptr::null::<f32>(); COUNT];
+        // The chunks, the last one padded, end at `padded`: checked here
+        // for every octave, rather than per octave and chunk.
+        let padded = out.len().div_ceil(w) * w;
+        for i in 0..COUNT {
+            amplitudes[i] = filled.amplitudes[i];
+            octaves[i] = filled.values(i, 0, padded).as_ptr();
+        }
+        let (whole, tail) = out.split_at_mut(out.len() / w * w);
+        for (k, out) in whole.chunks_exact_mut(w).enumerate() {
+            // SAFETY: k · w + w ≤ whole.len() ≤ padded.
+            let sum = unsafe { sum_chunk(mode, &octaves, &amplitudes, k * w) };
+            store_prefix(self.finish_chunk(mode, &sum, Filled { at: k * w, ..filled }), out);
+        }
+        if !tail.is_empty() {
+            let at = whole.len();
+            // SAFETY: at + w = padded.
+            let sum = unsafe { sum_chunk(mode, &octaves, &amplitudes, at) };
+            store_prefix(self.finish_chunk(mode, &sum, Filled { at, ..filled }), tail);
+        }
+    }
+
+    /// A chunk of [`Steps::combine_in_order`] from its unguarded sum,
     /// combined again with the guard where that is not finite.
     #[inline(always)]
     fn finish_chunk<B: BatchLanes>(&self, mode: FractalMode, sum: &OctaveSum<B>, filled: Filled<'_, B>) -> B {
         let v = sum.sum.scale_by(filled.normalization);
         if B::any(!crate::kinds::is_finite(v)) {
-            self.combine_as(mode, filled.count, &filled)
+            self.combine(mode, filled.count, &filled)
         } else {
             v
         }
@@ -756,6 +886,27 @@ impl<N> Fractal<N> {
 /// Chunks of lanes per run of [`Fractal::combine_in_order`]: 64 keeps a
 /// run's sums in 4 KiB (AVX2) to 8 KiB (AVX-512).
 const COMBINE_RUN: usize = 64;
+
+/// A chunk's octaves summed in order: octave i's lanes at `at` from
+/// `octaves[i]`, at `amplitudes[i]`.
+///
+/// # Safety
+/// Each `octaves[i]` points to at least `at + B::WIDTH` readable values.
+#[inline(always)]
+unsafe fn sum_chunk<B: BatchLanes, const COUNT: usize>(
+    mode: FractalMode,
+    octaves: &[*const f32; COUNT],
+    amplitudes: &[B; COUNT],
+    at: usize,
+) -> OctaveSum<B> {
+    let mut sum = OctaveSum::start();
+    for i in 0..COUNT {
+        // SAFETY: the caller's promise.
+        let lanes = unsafe { core::slice::from_raw_parts(octaves[i].add(at), B::WIDTH) };
+        sum.add_octave(mode, i, B::from_slice(lanes), amplitudes[i]);
+    }
+    sum
+}
 
 /// Lanes from up to WIDTH values, the last repeated.
 #[inline(always)]
