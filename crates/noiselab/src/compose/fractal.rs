@@ -624,15 +624,13 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                 }
             }
             let block_out = &mut out[done..done + len];
+            let octaves = OctaveBuffers { values: &buffers[..], stride, count };
             if finite {
-                let octaves = OctaveBuffers { values: &buffers[..], stride, count };
                 combine_finite(B::LEVEL, &self.steps, self.mode, octaves, block_out);
             } else {
                 let part = Span { axes: span.axes, start, accuracy: span.accuracy };
                 let amplitudes = self.steps.lane_amplitudes::<B>(count);
-                let normalization = B::cst(self.steps.scale[count - 1]);
-                let filled = Filled::new(&buffers[..], stride, count, (&amplitudes[..], normalization));
-                self.combine_with_positions::<B, D>(part, filled, block_out);
+                self.combine_with_positions::<B, D>(part, self.steps.filled(octaves, &amplitudes), block_out);
             }
             done += len;
         }
@@ -760,6 +758,15 @@ impl Steps {
         lanes
     }
 
+    /// A block's `octaves` for the octave loop, with their amplitudes in
+    /// lanes ([`Steps::lane_amplitudes`]) and the normalization of their
+    /// count.
+    #[inline(always)]
+    fn filled<'a, B: BatchLanes>(&self, octaves: OctaveBuffers<'a>, amplitudes: &'a [B]) -> Filled<'a, B> {
+        let normalization = B::cst(self.scale[octaves.count - 1]);
+        Filled::new(octaves.values, octaves.stride, octaves.count, (amplitudes, normalization))
+    }
+
     /// The grid fill's second pass over a block where every coordinate is
     /// finite (point evaluation's NaN guard then passes every value, so no
     /// positions are needed): the octave loop over the filled octaves in
@@ -767,8 +774,7 @@ impl Steps {
     #[inline(always)]
     fn combine_finite<B: BatchLanes>(&self, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
         let amplitudes = self.lane_amplitudes::<B>(octaves.count);
-        let normalization = B::cst(self.scale[octaves.count - 1]);
-        let filled = Filled::new(octaves.values, octaves.stride, octaves.count, (&amplitudes[..], normalization));
+        let filled = self.filled(octaves, &amplitudes);
         match mode {
             FractalMode::Fbm => self.combine_finite_as::<B>(FractalMode::Fbm, filled, out),
             FractalMode::Turbulence => self.combine_finite_as::<B>(FractalMode::Turbulence, filled, out),

@@ -1041,10 +1041,15 @@ impl<const D: usize> Interleaved<D> {
     #[inline(always)]
     fn gather_row(table: &mut Columns, features: &Columns) {
         let columns = table.fields;
-        for (col, values) in table.data.chunks_exact_mut(Self::ROW.max(1)).enumerate().take(columns) {
-            for a in 1..D {
-                for j in 0..Self::ROWS {
-                    values[(a - 1) * Self::ROWS + j] = features.field(Features::<D>::term(j, a), col)[0];
+        // Field by field: each feature field's columns sliced (and checked)
+        // once, then stored down the table. Per column and field, slicing
+        // cost more than the copy (28 instructions a column in 2D).
+        for a in 1..D {
+            for j in 0..Self::ROWS {
+                let at = (a - 1) * Self::ROWS + j;
+                let from = &features.field(Features::<D>::term(j, a), 0)[..columns];
+                for (values, &v) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
+                    values[at] = v;
                 }
             }
         }
