@@ -427,6 +427,83 @@ impl<B: BatchLanes> Source<B> for OnePolynomial<'_> {
     }
 }
 
+/// Every lane at one cell's corners, read once from another source and
+/// held (in registers, once inlined) while the chunks of a run of columns
+/// in that cell go by: the same operands as reading them chunk by chunk,
+/// without the splats, loads and checks each chunk's reads repeat.
+struct Held<B: BatchLanes> {
+    corners: [Corner<B>; MAX_CORNERS],
+    fields: Fields,
+}
+
+impl<B: BatchLanes> Held<B> {
+    /// The `1 << D` corners of `from`, records of `fields`.
+    #[inline(always)]
+    fn new<const D: usize>(from: &impl Source<B>, fields: Fields) -> Self {
+        let mut corners = [Corner::zero(); MAX_CORNERS];
+        for (c, corner) in corners.iter_mut().enumerate().take(1 << D) {
+            *corner = from.corner(c, fields);
+        }
+        Held { corners, fields }
+    }
+}
+
+impl<B: BatchLanes> Source<B> for Held<B> {
+    #[inline(always)]
+    fn field(&self, k: usize, next: usize) -> B {
+        let total = self.fields.total();
+        let corner = &self.corners[2 * (k / total) + next];
+        let m = k % total;
+        if m < self.fields.floats {
+            corner.f[m]
+        } else {
+            B::from_bits(corner.i[m - self.fields.floats])
+        }
+    }
+
+    #[inline(always)]
+    fn corner(&self, c: usize, _fields: Fields) -> Corner<B> {
+        self.corners[c]
+    }
+}
+
+/// Where [`Row::write_runs`] reads a run's corners, by the run's cell.
+/// (A trait, not a closure: the closure was left out of line, a call per
+/// run outside the instruction-set clone.)
+trait RunCorners<B: BatchLanes> {
+    fn held<const D: usize>(&self, cell: usize, fields: Fields) -> Held<B>;
+}
+
+/// Each cell's bound records in a [`Columns`] of `fields` fields
+/// ([`OneCell`] at the cell).
+struct CellRecords<'a> {
+    columns: &'a Columns,
+    fields: usize,
+}
+
+impl<B: BatchLanes> RunCorners<B> for CellRecords<'_> {
+    #[inline(always)]
+    fn held<const D: usize>(&self, cell: usize, fields: Fields) -> Held<B> {
+        Held::new::<D>(&OneCell::new(self.columns, cell, self.fields), fields)
+    }
+}
+
+/// Each lattice point's records bound for a batch of rows
+/// ([`write_batch`]), at row `row` of the batch ([`BatchRow`] at the cell).
+struct BatchRecords<'a> {
+    table: &'a [f32],
+    per_point: usize,
+    row: usize,
+}
+
+impl<B: BatchLanes> RunCorners<B> for BatchRecords<'_> {
+    #[inline(always)]
+    fn held<const D: usize>(&self, cell: usize, fields: Fields) -> Held<B> {
+        let span = self.per_point * 16;
+        Held::new::<D>(&BatchRow { points: &self.table[cell * span..(cell + 2) * span], per_point: self.per_point, row: self.row }, fields)
+    }
+}
+
 /// Lanes at up to 2·WIDTH consecutive entries from `first`: each field is
 /// the two registers of those entries' values, permuted by `lane[next]`
 /// (each lane's entry minus `first`, plus `next`). `NEAR`: the entries
@@ -996,11 +1073,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         match (long_runs, fast) {
             // Whole rows: every chunk, written where it starts.
             (true, false) if whole => {
-                for (ch, axis) in chunks.iter().zip(chunk_axis) {
-                    let (x, fade) = axis.lanes::<B>();
-                    let v = row.exact_at(kind, x, fade, &OneCell::new(records, ch.cell, bound_fields));
-                    emit(v, &mut out[o0 + ch.start..]);
-                }
+                row.write_runs(kind, (chunks, chunk_axis), &CellRecords { columns: records, fields: bound_fields }, &mut out[o0..]);
             }
             (true, true) if whole => {
                 for (ch, axis) in chunks.iter().zip(chunk_axis) {
@@ -1199,11 +1272,7 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let row = Row { frac: &[], fade: &[], weights, off_line: off_line(f) };
         let start = batch.starts[j];
         let out = &mut out[start..start + nx];
-        for (ch, axis) in chunks.iter().zip(chunk_axis) {
-            let two = &table[ch.cell * per_point * 16..(ch.cell + 2) * per_point * 16];
-            let (x, fade) = axis.lanes::<B>();
-            emit(row.exact_at(kind, x, fade, &BatchRow { points: two, per_point, row: j }), &mut out[ch.start..]);
-        }
+        row.write_runs(kind, (chunks, chunk_axis), &BatchRecords { table, per_point, row: j }, out);
     }
 }
 
@@ -1434,12 +1503,22 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         for ((row, &v), &s) in band_out.chunks_exact_mut(nx).zip(&frac1[y0..y1]).zip(&fade1[y0..y1]) {
             let (v, s) = (B::splat(v), B::splat(s));
             if aligned {
-                let mut lanes = row.chunks_exact_mut(w);
-                for (out, c) in (&mut lanes).zip(coef_whole.chunks_exact(4 * w)) {
-                    band_value::<B>(c, v, s).store(out);
+                // Two chunks a turn: a turn's own instructions were half
+                // of a chunk's (7 of 14 on AVX2). (Zipped by reference: the
+                // zip of the iterators themselves was built out of line, a
+                // call per row outside the instruction-set clone.)
+                let mut pairs = row.chunks_exact_mut(2 * w);
+                for (out, c) in (&mut pairs).zip(coef_whole.chunks_exact(8 * w)) {
+                    let (lo, hi) = out.split_at_mut(w);
+                    band_value::<B>(c, v, s).store(lo);
+                    band_value::<B>(&c[4 * w..], v, s).store(hi);
+                }
+                if whole % 2 == 1 {
+                    let k = whole - 1;
+                    band_value::<B>(&coef_whole[4 * w * k..], v, s).store(&mut row[w * k..w * k + w]);
                 }
                 if let Some(c) = coef_end.get(..4 * w) {
-                    emit(band_value::<B>(c, v, s), lanes.into_remainder());
+                    emit(band_value::<B>(c, v, s), &mut row[w * whole..]);
                 }
                 continue;
             }
@@ -1517,9 +1596,11 @@ impl Band {
                 }
                 for &(at, weights) in &self.rows {
                     let weights = splat_all(weights);
-                    for (k, b) in block.iter().enumerate() {
-                        let start = at + c + k * w;
-                        store_prefix(from_blends(kind, b, &weights), &mut out[start..start + w]);
+                    // The block's row sliced once, not each store (3 of
+                    // the 7 instructions a chunk were its bounds checks).
+                    let row = &mut out[at + c..at + c + Self::BLOCK * w];
+                    for (b, to) in block.iter().zip(row.chunks_exact_mut(w)) {
+                        from_blends(kind, b, &weights).store(to);
                     }
                 }
                 c += Self::BLOCK * w;
@@ -1586,10 +1667,52 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
     /// The points at positions `x` (fades `fade`) along axis 0.
     #[inline(always)]
     fn exact_at<K: Lattice<D>>(&self, kind: &K, x: B, fade: B, rec: &impl Source<B>) -> B {
+        if self.off_line {
+            self.exact_with::<K, true>(kind, x, fade, rec)
+        } else {
+            self.exact_with::<K, false>(kind, x, fade, rec)
+        }
+    }
+
+    /// [`Row::exact_at`] with its `off_line` known ([`corner_values`]).
+    #[inline(always)]
+    fn exact_with<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, x: B, fade: B, rec: &impl Source<B>) -> B {
         let mut weights = self.weights;
         weights[0] = fade;
-        let values = if self.off_line { corner_values::<K, B, D, true>(kind, x, rec) } else { corner_values::<K, B, D, false>(kind, x, rec) };
-        finish(kind, interpolate(values, weights))
+        finish(kind, interpolate(corner_values::<K, B, D, OFF_LINE>(kind, x, rec), weights))
+    }
+
+    /// A whole row of long runs (`chunks`, `chunk_axis`) into `out` (the
+    /// row): a run's corners read once from `corners` at its cell, when its
+    /// first chunk comes, and held while its chunks go by. (Chunk by chunk,
+    /// 2D improved re-read eight fields for every 8 points; slicing the
+    /// chunks run by run cost as much in bookkeeping for runs of 4.)
+    #[inline(always)]
+    fn write_runs<K: Lattice<D>>(&self, kind: &K, (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]), corners: &impl RunCorners<B>, out: &mut [f32]) {
+        if self.off_line {
+            self.write_runs_with::<K, true>(kind, (chunks, chunk_axis), corners, out)
+        } else {
+            self.write_runs_with::<K, false>(kind, (chunks, chunk_axis), corners, out)
+        }
+    }
+
+    #[inline(always)]
+    fn write_runs_with<K: Lattice<D>, const OFF_LINE: bool>(
+        &self,
+        kind: &K,
+        (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
+        corners: &impl RunCorners<B>,
+        out: &mut [f32],
+    ) {
+        let Some(first) = chunks.first() else { return };
+        let (mut at, mut held) = (first.cell, corners.held::<D>(first.cell, K::BOUND));
+        for (ch, axis) in chunks.iter().zip(chunk_axis) {
+            if ch.cell != at {
+                (at, held) = (ch.cell, corners.held::<D>(ch.cell, K::BOUND));
+            }
+            let (x, fade) = axis.lanes::<B>();
+            emit(self.exact_with::<K, OFF_LINE>(kind, x, fade, &held), &mut out[ch.start..]);
+        }
     }
 
     /// The same points from their cells' row polynomials ([`Accuracy::Fast`]).
