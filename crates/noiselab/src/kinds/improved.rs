@@ -142,7 +142,7 @@ impl Improved {
         } else {
             let mut floats = [[L::cst(0.0); 4]; MAX_CORNERS];
             for (f, &hc) in floats.iter_mut().zip(h).take(1 << D) {
-                *f = self.coefficients(hc);
+                *f = self.coefficients::<L, D>(hc);
             }
             lattice::float_records(&floats)
         }
@@ -155,15 +155,26 @@ impl Improved {
         if D == 4 {
             Corner { i: [h, zero.i[1]], f: zero.f }
         } else {
-            Corner { i: zero.i, f: self.coefficients(h) }
+            Corner { i: zero.i, f: self.coefficients::<L, D>(h) }
         }
     }
 
-    /// The 3D gradient's coefficient on each axis for hash `h`.
+    /// The 3D gradient's coefficient on each axis for hash `h`. In 1D and
+    /// 2D, `f[2]` holds instead the terms of the axes the point lies at 0
+    /// on (2D: axis 2; 1D: axes 1 and 2, summed as `bind` would): the same
+    /// for every row, so formed once per lattice point rather than per row
+    /// in `bind` (the same operations, so the same bits).
     #[inline(always)]
-    fn coefficients<L: Lanes>(&self, h: L::Int) -> [L; 4] {
+    fn coefficients<L: Lanes, const D: usize>(&self, h: L::Int) -> [L; 4] {
         let [cx, cy, cz] = &GRADIENTS[self.variant as usize];
-        [L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h), L::cst(0.0)]
+        let mut c = [L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h), L::cst(0.0)];
+        let zero = L::cst(0.0);
+        if D == 2 {
+            c[2] = pick(zero, c[2]);
+        } else if D == 1 {
+            c[2] = pick(zero, c[1]) + pick(zero, c[2]);
+        }
+        c
     }
 
     /// Perlin's index of a corner on an axis, `(X & 255) + bit`; tiled,
@@ -223,7 +234,8 @@ fn pick<L: Lanes>(a: L, c: L) -> L {
 }
 
 impl<const D: usize> Lattice<D> for Improved {
-    /// 1D–3D: the gradient's coefficient on each axis; 4D: the hash.
+    /// 1D–3D: the gradient's coefficient on each axis (below 3D, `f[2]`
+    /// holds the axes at 0's terms: see `coefficients`); 4D: the hash.
     const HASHED: Fields = if D == 4 { Fields { floats: 0, ints: 1 } } else { Fields { floats: 3, ints: 0 } };
     /// 1D–3D: axis 0's coefficient and the other axes' terms; 4D: the
     /// offsets of axes 1..3 and the hash.
@@ -271,7 +283,12 @@ impl<const D: usize> Lattice<D> for Improved {
             b.f[..3].copy_from_slice(&at[1..]);
         } else {
             b.f[0] = corner.f[0];
-            b.f[1] = pick(at[1], corner.f[1]) + pick(at[2], corner.f[2]);
+            // Below 3D the terms of the axes at 0 come ready (`coefficients`).
+            b.f[1] = match D {
+                1 => corner.f[2],
+                2 => pick(at[1], corner.f[1]) + corner.f[2],
+                _ => pick(at[1], corner.f[1]) + pick(at[2], corner.f[2]),
+            };
         }
         b
     }

@@ -535,8 +535,9 @@ fn zeros<T: Copy + Default>(v: &mut Vec<T>, len: usize) -> &mut Vec<T> {
 }
 
 /// The cell, position and fade of each coordinate, into `cell`, `frac`
-/// and `fade` (`padded` entries, at least the coordinates rounded up to
-/// whole lanes; entries past them repeat the last coordinate's, then 0).
+/// and `fade` (`padded` entries, whole lanes and at least the coordinates
+/// rounded up to them; entries past them repeat the last coordinate's,
+/// then 0).
 #[inline(always)]
 fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
@@ -544,7 +545,11 @@ fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (cell, frac, fade): (&mut Vec<i32>, &mut Vec<f32>, &mut Vec<f32>),
     padded: usize,
 ) {
-    let (cell, frac, fade) = (zeros(cell, padded), zeros(frac, padded), zeros(fade, padded));
+    // Sized, not zeroed: the loops below write every entry (a memset per
+    // vector was a tenth of a 32² tile's fixed cost).
+    cell.resize(padded, 0);
+    frac.resize(padded, 0.0);
+    fade.resize(padded, 0.0);
     let (n, w) = (coords.len(), B::WIDTH);
     let mut k = 0;
     while k < n {
@@ -561,6 +566,12 @@ fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
         B::store_int(c, &mut cell[k..]);
         f.store(&mut frac[k..]);
         kind.fade(f).store(&mut fade[k..]);
+        k += w;
+    }
+    while k < padded {
+        B::store_int(B::Int::splat(0), &mut cell[k..]);
+        B::cst(0.0).store(&mut frac[k..]);
+        B::cst(0.0).store(&mut fade[k..]);
         k += w;
     }
 }
@@ -1188,14 +1199,15 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     // Each row's start in the output, cells and positions on axes 1...
-    let mut rows = span
-        .rows(out.len())
-        .map(|RowPiece { idx, offset, .. }| {
-            let (cell, f) = row_cells(kind, &span, idx);
-            (offset, cell, f)
-        })
-        .peekable();
-    while let Some((offset, cell, f)) = rows.next() {
+    let mut rows = span.rows(out.len()).map(|RowPiece { idx, offset, .. }| {
+        let (cell, f) = row_cells(kind, &span, idx);
+        (offset, cell, f)
+    });
+    // The row after, by hand: `Peekable::peek`'s closure was left out of
+    // line, outside the instruction-set clone (3D improved +10 %).
+    let mut next = rows.next();
+    while let Some((offset, cell, f)) = next {
+        next = rows.next();
         let j = batch.len;
         batch.starts[j] = offset;
         for d in 1..D {
@@ -1204,7 +1216,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
         batch.len += 1;
         // Written when full, or when the next row is in another plane or
         // there is none.
-        if batch.len < B::WIDTH && rows.peek().is_some_and(|next| next.1 == cell) {
+        if batch.len < B::WIDTH && next.is_some_and(|(_, next_cell, _)| next_cell == cell) {
             continue;
         }
         if plane != Some(cell) {
