@@ -545,8 +545,8 @@ fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (cell, frac, fade): (&mut Vec<i32>, &mut Vec<f32>, &mut Vec<f32>),
     padded: usize,
 ) {
-    // Sized, not zeroed: the loops below write every entry (a memset per
-    // vector was a tenth of a 32² tile's fixed cost).
+    // Sized, not zeroed: the loops below write every entry, so a kept
+    // vector of the same size (the next tile's) costs no memset.
     cell.resize(padded, 0);
     frac.resize(padded, 0.0);
     fade.resize(padded, 0.0);
