@@ -203,18 +203,23 @@ fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
     a.shl(3).add(a).add(b.shl(1).add(b)).add(o[2])
 }
 
-/// The last chunk table ([`Simplex::chunk_gradient_indices2`], `…3`) and lane 0's
-/// cell it was made for: along a grid row, neighbouring chunks mostly start
-/// in the same cell and share it.
+/// The last chunk table ([`Simplex::chunk_gradients2`],
+/// [`Simplex::chunk_gradient_indices3`]) and lane 0's cell it was made for:
+/// along a grid row, neighbouring chunks mostly start in the same cell and
+/// share it.
 struct ChunkTable<const D: usize> {
     cell: Option<[i32; D]>,
+    /// 3D: the gradient indices.
     entries: [i32; 32],
+    /// 2D: the gradients' components, two tables of each (corners 0 and 2,
+    /// then corner 1).
+    gradients: [[f32; 8]; 4],
 }
 
 impl<const D: usize> ChunkTable<D> {
     #[inline(always)]
     fn empty() -> Self {
-        ChunkTable { cell: None, entries: [0; 32] }
+        ChunkTable { cell: None, entries: [0; 32], gradients: [[0.0; 8]; 4] }
     }
 }
 
@@ -261,46 +266,65 @@ impl Simplex {
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
         let (ii, jj) = (i.and_c(255), j.and_c(255));
-        let gi = match self.chunk_gradient_indices2::<L>(ii, jj, upper, memo) {
-            Some(gi) => gi,
+        let g = match self.chunk_gradients2::<L>(ii, jj, upper, memo) {
+            Some(g) => g,
             None => {
                 // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0
                 // and 2 look up anyway: a select instead of a third lookup.
                 let (p0, p1) = (self.perm.at(jj), self.perm.at(jj.add_c(1)));
                 let gi0 = self.gradient_index(ii.add(p0));
                 let gi1 = self.gradient_index(ii.add(i1).add(L::Int::select(upper, p0, p1)));
-                [gi0, gi1, self.gradient_index(ii.add_c(1).add(p1))]
+                let gi2 = self.gradient_index(ii.add_c(1).add(p1));
+                [Self::grad3(gi0), Self::grad3(gi1), Self::grad3(gi2)]
             }
         };
-        let g = [Self::grad3(gi[0]), Self::grad3(gi[1]), Self::grad3(gi[2])];
         Corners { p: [xin, yin], r2: 0.5, scale: 70.0, g, d: [[x0, y0], [x1, y1], [x2, y2]] }
     }
 
-    /// 2D gradient indices for a chunk whose lanes lie in cells `(i0, j0)`
-    /// to `(i0 + 1, j0 + 1)` (`i0`, `j0` lane 0's): the reference's hash of
-    /// the nine corners those cells reach, computed once into a table each
-    /// lane indexes, instead of five table lookups per lane. The same table
-    /// entries, so the same bits. `None` where the lanes spread further (or
-    /// the lane type looks tables up in registers).
+    /// 2D gradients for a chunk whose lanes lie in cells `(i0, j0)` to
+    /// `(i0 + 1, j0 + 1)` (`i0`, `j0` lane 0's): the reference's gradients
+    /// of the nine corners those cells reach, hashed once on one lane into
+    /// tables each lane indexes, instead of five table lookups per lane.
+    /// The same entries, so the same bits. Each table has eight entries, so
+    /// a lane's lookup is one permute: corners 0 and 2 share one, by the
+    /// lane's cell offset `2·di + dj` (corner 2 from entry 4), and corner 1
+    /// has its own (from entry 4 below the diagonal). `None` where the
+    /// lanes spread further (or the lane type looks tables up in registers).
     #[inline(always)]
-    fn chunk_gradient_indices2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask, memo: &mut ChunkTable<2>) -> Option<[L::Int; 3]> {
+    fn chunk_gradients2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask, memo: &mut ChunkTable<2>) -> Option<[[L; 2]; 3]> {
         let ([i0, j0], [di, dj]) = chunk_cells::<L, 2>([ii, jj])?;
         if memo.cell != Some([i0, j0]) {
-            // Entry 4a + b: the gradient index of corner (i0 + a, j0 + b), a,
-            // b ≤ 2, by the lanes' own hash on one lane.
+            // The gradient of corner (i0 + a, j0 + b), a, b ≤ 2, by the
+            // lanes' own hash on one lane.
+            let mut corner = [[[0f32; 2]; 3]; 3];
             for b in 0..3 {
                 let pj = self.perm.at(j0 + b);
                 for a in 0..3 {
-                    memo.entries[(4 * a + b) as usize] = self.gradient_index(i0 + a + pj);
+                    let gi = self.gradient_index(i0 + a + pj);
+                    corner[a as usize][b as usize] = Self::grad3::<f32, 2>(gi);
+                }
+            }
+            for k in 0..4 {
+                let (a, b) = (k >> 1, k & 1);
+                for axis in 0..2 {
+                    memo.gradients[axis][k] = corner[a][b][axis];
+                    memo.gradients[axis][4 + k] = corner[a + 1][b + 1][axis];
+                    memo.gradients[2 + axis][k] = corner[a + 1][b][axis];
+                    memo.gradients[2 + axis][4 + k] = corner[a][b + 1][axis];
                 }
             }
             memo.cell = Some([i0, j0]);
         }
-        let table: &[i32; 16] = memo.entries[..16].try_into().unwrap();
-        // Corner 1 is (1, 0) above the diagonal, else (0, 1); corner 2 (1, 1).
-        let e0 = di.shl(2).add(dj);
-        let e1 = e0.add(L::Int::select(upper, L::Int::splat(4), L::Int::splat(1)));
-        Some([L::Int::lookup16(table, e0), L::Int::lookup16(table, e1), L::Int::lookup16(table, e0.add_c(5))])
+        let e0 = di.shl(1).add(dj);
+        // Corner 1 is (1, 0) above the diagonal, else (0, 1).
+        let e1 = e0.add(L::Int::select(upper, L::Int::splat(0), L::Int::splat(4)));
+        let e2 = e0.add_c(4);
+        let t = &memo.gradients;
+        Some([
+            [L::lookup8(&t[0], e0), L::lookup8(&t[1], e0)],
+            [L::lookup8(&t[2], e1), L::lookup8(&t[3], e1)],
+            [L::lookup8(&t[0], e2), L::lookup8(&t[1], e2)],
+        ])
     }
 
     #[inline(always)]
@@ -348,7 +372,7 @@ impl Simplex {
     }
 
     /// 3D gradient indices for a chunk whose lanes lie in cells `c0` to
-    /// `c0 + (1, 1, 1)` (`c0` lane 0's), as [`Self::chunk_gradient_indices2`]: the
+    /// `c0 + (1, 1, 1)` (`c0` lane 0's), as [`Self::chunk_gradients2`] in 2D: the
     /// 27 corners those cells reach hashed once (39 lookups per chunk
     /// instead of ten per lane), each lane's four corners read from that
     /// table. `steps` are corners 1 and 2's offsets.

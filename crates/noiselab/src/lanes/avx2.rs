@@ -218,6 +218,11 @@ impl Lanes for X8 {
         }
     }
     #[inline(always)]
+    fn lookup8(table: &[f32; 8], idx: I8) -> Self {
+        // The permute reads the low three bits of each index.
+        X8(unsafe { _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.as_ptr()), idx.0) })
+    }
+    #[inline(always)]
     fn gather(table: &[f32], idx: I8) -> Self {
         let i = idx.to_array();
         let mut out = [0f32; 8];

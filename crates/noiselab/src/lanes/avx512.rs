@@ -209,6 +209,11 @@ impl Lanes for X16 {
         X16(unsafe { _mm512_permutexvar_ps(idx.0, _mm512_loadu_ps(table.as_ptr())) })
     }
     #[inline(always)]
+    fn lookup8(table: &[f32; 8], idx: I16) -> Self {
+        // The table twice over: entry `idx & 15` is entry `idx & 7`.
+        X16(unsafe { _mm512_permutexvar_ps(idx.0, _mm512_broadcast_f32x8(_mm256_loadu_ps(table.as_ptr()))) })
+    }
+    #[inline(always)]
     fn gather(table: &[f32], idx: I16) -> Self {
         let i = idx.to_array();
         let mut out = [0f32; 16];

@@ -135,6 +135,10 @@ pub trait Lanes:
     /// Per lane: `table[idx & 15]`, widened exactly to the element type
     /// (one permute on AVX-512).
     fn lookup16(table: &[f32; 16], idx: Self::Int) -> Self;
+    /// Per lane: `table[idx & 7]`, widened exactly to the element type
+    /// (one permute on AVX2 and AVX-512, where [`Lanes::lookup16`] takes
+    /// two and a blend on AVX2).
+    fn lookup8(table: &[f32; 8], idx: Self::Int) -> Self;
 
     /// `self * self`.
     #[inline(always)]

@@ -207,6 +207,10 @@ macro_rules! scalar_lanes {
             fn lookup16(table: &[f32; 16], idx: i32) -> Self {
                 table[(idx & 15) as usize] as $t
             }
+            #[inline(always)]
+            fn lookup8(table: &[f32; 8], idx: i32) -> Self {
+                table[(idx & 7) as usize] as $t
+            }
         }
     };
 }

@@ -247,6 +247,14 @@ macro_rules! wide_lanes {
                 $f(out)
             }
             #[inline(always)]
+            fn lookup8(table: &[f32; 8], idx: $i) -> Self {
+                let mut out = [0f32; $n];
+                for k in 0..$n {
+                    out[k] = table[(idx.0[k] & 7) as usize];
+                }
+                $f(out)
+            }
+            #[inline(always)]
             fn gather(table: &[f32], idx: $i) -> Self {
                 let mut out = [0f32; $n];
                 for k in 0..$n {
