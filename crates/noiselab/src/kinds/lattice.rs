@@ -1216,7 +1216,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
         batch.len += 1;
         // Written when full, or when the next row is in another plane or
         // there is none.
-        if batch.len < B::WIDTH && next.is_some_and(|(_, next_cell, _)| next_cell == cell) {
+        if batch.len < B::WIDTH && matches!(next, Some((_, next_cell, _)) if next_cell == cell) {
             continue;
         }
         if plane != Some(cell) {
