@@ -203,30 +203,169 @@ fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
     a.shl(3).add(a).add(b.shl(1).add(b)).add(o[2])
 }
 
-/// The last chunk table ([`Simplex::chunk_gradients2`],
-/// [`Simplex::chunk_gradient_indices3`]) and lane 0's cell it was made for:
-/// along a grid row, neighbouring chunks mostly start in the same cell and
-/// share it.
-struct ChunkTable<const D: usize> {
-    cell: Option<[i32; D]>,
+/// A 2D chunk table's entry `e` holds the gradient of corner
+/// `(i0 + TABLE2_A[e], j0 + TABLE2_B[e])`, `(i0, j0)` lane 0's cell. Entries
+/// 0 to 7 serve corners 0 and 2, by the lane's cell offset `2·di + dj`
+/// (corner 2 from entry 4); entries 8 to 15 serve corner 1 (from entry 12
+/// below the diagonal). So each lane's lookup is into eight entries: one
+/// permute.
+const TABLE2_A: [i32; 16] = [0, 0, 1, 1, 1, 1, 2, 2, 1, 1, 2, 2, 0, 0, 1, 1];
+const TABLE2_B: [i32; 16] = [0, 1, 0, 1, 1, 2, 1, 2, 0, 1, 0, 1, 1, 2, 1, 2];
+
+/// The last chunk table ([`ChunkTables::gradients2`],
+/// [`ChunkTables::gradient_indices3`]) and lane 0's cell it was made for
+/// (2D: third coordinate 0): along a grid row, neighbouring chunks mostly
+/// start in the same cell and share it.
+struct ChunkTable {
+    cell: Option<[i32; 3]>,
     /// 3D: the gradient indices.
     entries: [i32; 32],
-    /// 2D: the gradients' components, two tables of each (corners 0 and 2,
-    /// then corner 1).
-    gradients: [[f32; 8]; 4],
+    /// 2D: by axis, the gradients' components at the entries of
+    /// [`TABLE2_A`], in two halves of eight.
+    gradients: [[[f32; 8]; 2]; 2],
 }
 
-impl<const D: usize> ChunkTable<D> {
+impl ChunkTable {
     #[inline(always)]
     fn empty() -> Self {
-        ChunkTable { cell: None, entries: [0; 32], gradients: [[0.0; 8]; 4] }
+        ChunkTable { cell: None, entries: [0; 32], gradients: [[[0.0; 8]; 2]; 2] }
+    }
+}
+
+/// Where a chunk's corner gradients may come from other than per-lane
+/// lookups: a grid's chunk table (batch lanes), or nowhere ([`NoTables`],
+/// a point evaluation, whose lanes need not be near each other).
+trait ChunkTables<L: Lanes> {
+    /// 2D: the three corners' gradients for lanes in cells `cell`, corner
+    /// 1 by `upper`.
+    fn gradients2(&mut self, noise: &Simplex, cell: [L::Int; 2], upper: L::Mask) -> Option<[[L; 2]; 3]>;
+    /// 3D: the four corners' gradient indices for lanes in cells `cell`,
+    /// corners 1 and 2 at offsets `steps`.
+    fn gradient_indices3(&mut self, noise: &Simplex, cell: [L::Int; 3], steps: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]>;
+}
+
+/// No chunk tables: every lane hashes its own corners.
+struct NoTables;
+
+impl<L: Lanes> ChunkTables<L> for NoTables {
+    #[inline(always)]
+    fn gradients2(&mut self, _: &Simplex, _: [L::Int; 2], _: L::Mask) -> Option<[[L; 2]; 3]> {
+        None
+    }
+    #[inline(always)]
+    fn gradient_indices3(&mut self, _: &Simplex, _: [L::Int; 3], _: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]> {
+        None
+    }
+}
+
+/// By axis, the corner offsets of a 3D chunk table's entries: entry
+/// `e = 9a + 3b + c` is corner `c0 + (a, b, c)`.
+const TABLE3_OFFSETS: [[i32; 32]; 3] = {
+    let mut t = [[0; 32]; 3];
+    let mut e = 0;
+    while e < 32 {
+        t[0][e] = e as i32 / 9;
+        t[1][e] = e as i32 / 3 % 3;
+        t[2][e] = e as i32 % 3;
+        e += 1;
+    }
+    t
+};
+
+/// A grid's chunk tables: where a chunk's lanes lie in lane 0's cell or the
+/// next on each axis, the corners those cells reach are hashed once into a
+/// small table each lane indexes, instead of hashed per lane. The same
+/// entries, so the same bits. `None` where the lanes spread further (or
+/// the lane type is a single lane: `Lanes::CHUNK_TABLES`).
+impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
+    /// The nine corners cells `(i0, j0)` to `(i0 + 1, j0 + 1)` reach, at
+    /// the entries of [`TABLE2_A`]; each lane's gradient component is then
+    /// one permute ([`Lanes::lookup8`]), where five table lookups and six
+    /// permutes were.
+    #[inline(always)]
+    fn gradients2(&mut self, noise: &Simplex, cell: [B::Int; 2], upper: B::Mask) -> Option<[[B; 2]; 3]> {
+        let ([i0, j0], [di, dj]) = chunk_cells::<B, 2>(cell)?;
+        if self.cell != Some([i0, j0, 0]) {
+            if B::WIDTH == TABLE2_A.len() {
+                // One lane per entry, hashed as the lanes hash: two lookups
+                // for the table, where one lane would take twelve.
+                let (a, b) = (B::load_int(&TABLE2_A), B::load_int(&TABLE2_B));
+                let gi = noise.gradient_index(a.add_c(i0).add(noise.perm.at(b.add_c(j0))));
+                for (axis, g) in self.gradients.iter_mut().enumerate() {
+                    B::lookup16(&GRAD3[axis], gi).store(g.as_flattened_mut());
+                }
+            } else {
+                // Each of the nine corners once, on one lane.
+                let mut corner = [[[0f32; 2]; 3]; 3];
+                for b in 0..3 {
+                    let pj = noise.perm.at(j0 + b);
+                    for a in 0..3 {
+                        corner[a as usize][b as usize] = Simplex::grad3::<f32, 2>(noise.gradient_index(i0 + a + pj));
+                    }
+                }
+                for e in 0..TABLE2_A.len() {
+                    let [x, y] = corner[TABLE2_A[e] as usize][TABLE2_B[e] as usize];
+                    self.gradients[0][e / 8][e % 8] = x;
+                    self.gradients[1][e / 8][e % 8] = y;
+                }
+            }
+            self.cell = Some([i0, j0, 0]);
+        }
+        let e0 = di.shl(1).add(dj);
+        // Corner 1 is (1, 0) above the diagonal, else (0, 1).
+        let e1 = e0.add(B::Int::select(upper, B::Int::splat(0), B::Int::splat(4)));
+        let e2 = e0.add_c(4);
+        let [x, y] = &self.gradients;
+        Some([
+            [B::lookup8(&x[0], e0), B::lookup8(&y[0], e0)],
+            [B::lookup8(&x[1], e1), B::lookup8(&y[1], e1)],
+            [B::lookup8(&x[0], e2), B::lookup8(&y[0], e2)],
+        ])
+    }
+
+    /// The 27 corners cells `c0` to `c0 + (1, 1, 1)` reach, entry
+    /// `9a + 3b + c` for corner `c0 + (a, b, c)` (39 lookups per chunk
+    /// instead of ten per lane); each lane's four corners read from it.
+    #[inline(always)]
+    fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Int; 3]; 2]) -> Option<[B::Int; 4]> {
+        let (c0, d) = chunk_cells::<B, 3>(cell)?;
+        if self.cell != Some(c0) {
+            if B::WIDTH == 16 {
+                // Sixteen entries at a time, one lane each, hashed as the
+                // lanes hash: six lookups where one lane would take 39
+                // (entries from 27 on are not read).
+                let (i0, j0) = (B::Int::splat(c0[0]), B::Int::splat(c0[1]));
+                for (h, entries) in self.entries.chunks_exact_mut(16).enumerate() {
+                    let [a, b, c] = &TABLE3_OFFSETS;
+                    let (a, b, c) = (B::load_int(&a[16 * h..]), B::load_int(&b[16 * h..]), B::load_int(&c[16 * h..]));
+                    let pk = noise.perm.at(c.add_c(c0[2]));
+                    B::store_int(noise.hash3([i0, j0], [a, b], pk), entries);
+                }
+            } else {
+                for c in 0..3 {
+                    let pk = noise.perm.at(c0[2] + c);
+                    for b in 0..3 {
+                        for a in 0..3 {
+                            self.entries[(9 * a + 3 * b + c) as usize] = noise.hash3([c0[0], c0[1]], [a, b], pk);
+                        }
+                    }
+                }
+            }
+            self.cell = Some(c0);
+        }
+        let e0 = table_entry3(d);
+        let mut gi = [B::Int::splat(0); 4];
+        for (g, e) in gi.iter_mut().zip([e0, e0.add(table_entry3(steps[0])), e0.add(table_entry3(steps[1])), e0.add_c(13)]) {
+            *g = B::Int::lookup32(&self.entries, e);
+        }
+        Some(gi)
     }
 }
 
 /// A grid's chunks in row order, each chunk table kept for the next.
 struct TableReuse<'a, const D: usize> {
     noise: &'a Simplex,
-    memo: ChunkTable<D>,
+    memo: ChunkTable,
 }
 
 /// 1 where the mask is set, else 0.
@@ -250,7 +389,7 @@ fn minus_one_if<L: Lanes>(x: L, m: L::Mask) -> L {
 
 impl Simplex {
     #[inline(always)]
-    fn corners2<L: Lanes>(&self, [xin, yin]: [L; 2], memo: &mut ChunkTable<2>) -> Corners<L, 2, 3> {
+    fn corners2<L: Lanes>(&self, [xin, yin]: [L; 2], tables: &mut impl ChunkTables<L>) -> Corners<L, 2, 3> {
         let f2 = L::cst(0.5 * (3f64.sqrt() - 1.0));
         let g2 = L::cst((3.0 - 3f64.sqrt()) / 6.0);
         let s = (xin + yin) * f2;
@@ -266,7 +405,7 @@ impl Simplex {
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
         let (ii, jj) = (i.and_c(255), j.and_c(255));
-        let g = match self.chunk_gradients2::<L>(ii, jj, upper, memo) {
+        let g = match tables.gradients2(self, [ii, jj], upper) {
             Some(g) => g,
             None => {
                 // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0
@@ -281,54 +420,8 @@ impl Simplex {
         Corners { p: [xin, yin], r2: 0.5, scale: 70.0, g, d: [[x0, y0], [x1, y1], [x2, y2]] }
     }
 
-    /// 2D gradients for a chunk whose lanes lie in cells `(i0, j0)` to
-    /// `(i0 + 1, j0 + 1)` (`i0`, `j0` lane 0's): the reference's gradients
-    /// of the nine corners those cells reach, hashed once on one lane into
-    /// tables each lane indexes, instead of five table lookups per lane.
-    /// The same entries, so the same bits. Each table has eight entries, so
-    /// a lane's lookup is one permute: corners 0 and 2 share one, by the
-    /// lane's cell offset `2·di + dj` (corner 2 from entry 4), and corner 1
-    /// has its own (from entry 4 below the diagonal). `None` where the
-    /// lanes spread further (or the lane type looks tables up in registers).
     #[inline(always)]
-    fn chunk_gradients2<L: Lanes>(&self, ii: L::Int, jj: L::Int, upper: L::Mask, memo: &mut ChunkTable<2>) -> Option<[[L; 2]; 3]> {
-        let ([i0, j0], [di, dj]) = chunk_cells::<L, 2>([ii, jj])?;
-        if memo.cell != Some([i0, j0]) {
-            // The gradient of corner (i0 + a, j0 + b), a, b ≤ 2, by the
-            // lanes' own hash on one lane.
-            let mut corner = [[[0f32; 2]; 3]; 3];
-            for b in 0..3 {
-                let pj = self.perm.at(j0 + b);
-                for a in 0..3 {
-                    let gi = self.gradient_index(i0 + a + pj);
-                    corner[a as usize][b as usize] = Self::grad3::<f32, 2>(gi);
-                }
-            }
-            for k in 0..4 {
-                let (a, b) = (k >> 1, k & 1);
-                for axis in 0..2 {
-                    memo.gradients[axis][k] = corner[a][b][axis];
-                    memo.gradients[axis][4 + k] = corner[a + 1][b + 1][axis];
-                    memo.gradients[2 + axis][k] = corner[a + 1][b][axis];
-                    memo.gradients[2 + axis][4 + k] = corner[a][b + 1][axis];
-                }
-            }
-            memo.cell = Some([i0, j0]);
-        }
-        let e0 = di.shl(1).add(dj);
-        // Corner 1 is (1, 0) above the diagonal, else (0, 1).
-        let e1 = e0.add(L::Int::select(upper, L::Int::splat(0), L::Int::splat(4)));
-        let e2 = e0.add_c(4);
-        let t = &memo.gradients;
-        Some([
-            [L::lookup8(&t[0], e0), L::lookup8(&t[1], e0)],
-            [L::lookup8(&t[2], e1), L::lookup8(&t[3], e1)],
-            [L::lookup8(&t[0], e2), L::lookup8(&t[1], e2)],
-        ])
-    }
-
-    #[inline(always)]
-    fn corners3<L: Lanes>(&self, [xin, yin, zin]: [L; 3], memo: &mut ChunkTable<3>) -> Corners<L, 3, 4> {
+    fn corners3<L: Lanes>(&self, [xin, yin, zin]: [L; 3], tables: &mut impl ChunkTables<L>) -> Corners<L, 3, 4> {
         let f3 = L::cst(1.0 / 3.0);
         let g3 = L::cst(1.0 / 6.0);
         let s = (xin + yin + zin) * f3;
@@ -353,7 +446,7 @@ impl Simplex {
         let (cell, kk) = ([i.and_c(255), j.and_c(255)], k.and_c(255));
         let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
         let (k1, k2) = (one_if::<L>(mk1), one_if::<L>(mk2));
-        let gi = match self.chunk_gradient_indices3::<L>([cell[0], cell[1], kk], [[i1, j1, k1], [i2, j2, k2]], memo) {
+        let gi = match tables.gradient_indices3(self, [cell[0], cell[1], kk], [[i1, j1, k1], [i2, j2, k2]]) {
             Some(gi) => gi,
             None => {
                 // perm[kk + c] for c ∈ {0, 1}: looked up once each, then
@@ -369,36 +462,6 @@ impl Simplex {
         };
         let g = [Self::grad3(gi[0]), Self::grad3(gi[1]), Self::grad3(gi[2]), Self::grad3(gi[3])];
         Corners { p: [xin, yin, zin], r2: 0.6, scale: 32.0, g, d: [[x0, y0, z0], d1, d2, d3] }
-    }
-
-    /// 3D gradient indices for a chunk whose lanes lie in cells `c0` to
-    /// `c0 + (1, 1, 1)` (`c0` lane 0's), as [`Self::chunk_gradients2`] in 2D: the
-    /// 27 corners those cells reach hashed once (39 lookups per chunk
-    /// instead of ten per lane), each lane's four corners read from that
-    /// table. `steps` are corners 1 and 2's offsets.
-    #[inline(always)]
-    fn chunk_gradient_indices3<L: Lanes>(&self, cell: [L::Int; 3], steps: [[L::Int; 3]; 2], memo: &mut ChunkTable<3>) -> Option<[L::Int; 4]> {
-        let (c0, d) = chunk_cells::<L, 3>(cell)?;
-        if memo.cell != Some(c0) {
-            // Entry 9a + 3b + c: corner c0 + (a, b, c), each ≤ 2, by the
-            // lanes' own hash on one lane.
-            for c in 0..3 {
-                let pk = self.perm.at(c0[2] + c);
-                for b in 0..3 {
-                    for a in 0..3 {
-                        memo.entries[(9 * a + 3 * b + c) as usize] = self.hash3([c0[0], c0[1]], [a, b], pk);
-                    }
-                }
-            }
-            memo.cell = Some(c0);
-        }
-        let table = &memo.entries;
-        let e0 = table_entry3(d);
-        let mut gi = [L::Int::splat(0); 4];
-        for (g, e) in gi.iter_mut().zip([e0, e0.add(table_entry3(steps[0])), e0.add(table_entry3(steps[1])), e0.add_c(13)]) {
-            *g = L::Int::lookup32(table, e);
-        }
-        Some(gi)
     }
 
     #[inline(always)]
@@ -496,7 +559,7 @@ macro_rules! impl_simplex_tabled {
             crate::grid::batch_entry!($d);
             #[inline(always)]
             fn sample<L: Lanes>(&self, p: [L; $d]) -> L {
-                self.$corners(p, &mut ChunkTable::empty()).value()
+                self.$corners(p, &mut NoTables).value()
             }
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
@@ -512,7 +575,7 @@ macro_rules! impl_simplex_tabled {
         impl NoiseGradient<$d> for Simplex {
             #[inline(always)]
             fn sample_gradient<L: Lanes>(&self, p: [L; $d]) -> (L, [L; $d]) {
-                self.$corners(p, &mut ChunkTable::empty()).value_gradient()
+                self.$corners(p, &mut NoTables).value_gradient()
             }
         }
     )*};
