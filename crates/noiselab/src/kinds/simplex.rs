@@ -258,20 +258,6 @@ impl<L: Lanes> ChunkTables<L> for NoTables {
     }
 }
 
-/// By axis, the corner offsets of a 3D chunk table's entries: entry
-/// `e = 9a + 3b + c` is corner `c0 + (a, b, c)`.
-const TABLE3_OFFSETS: [[i32; 32]; 3] = {
-    let mut t = [[0; 32]; 3];
-    let mut e = 0;
-    while e < 32 {
-        t[0][e] = e as i32 / 9;
-        t[1][e] = e as i32 / 3 % 3;
-        t[2][e] = e as i32 % 3;
-        e += 1;
-    }
-    t
-};
-
 /// A grid's chunk tables: where a chunk's lanes lie in lane 0's cell or the
 /// next on each axis, the corners those cells reach are hashed once into a
 /// small table each lane indexes, instead of hashed per lane. The same
@@ -330,24 +316,11 @@ impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
     fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Int; 3]; 2]) -> Option<[B::Int; 4]> {
         let (c0, d) = chunk_cells::<B, 3>(cell)?;
         if self.cell != Some(c0) {
-            if B::WIDTH == 16 {
-                // Sixteen entries at a time, one lane each, hashed as the
-                // lanes hash: six lookups where one lane would take 39
-                // (entries from 27 on are not read).
-                let (i0, j0) = (B::Int::splat(c0[0]), B::Int::splat(c0[1]));
-                for (h, entries) in self.entries.chunks_exact_mut(16).enumerate() {
-                    let [a, b, c] = &TABLE3_OFFSETS;
-                    let (a, b, c) = (B::load_int(&a[16 * h..]), B::load_int(&b[16 * h..]), B::load_int(&c[16 * h..]));
-                    let pk = noise.perm.at(c.add_c(c0[2]));
-                    B::store_int(noise.hash3([i0, j0], [a, b], pk), entries);
-                }
-            } else {
-                for c in 0..3 {
-                    let pk = noise.perm.at(c0[2] + c);
-                    for b in 0..3 {
-                        for a in 0..3 {
-                            self.entries[(9 * a + 3 * b + c) as usize] = noise.hash3([c0[0], c0[1]], [a, b], pk);
-                        }
+            for c in 0..3 {
+                let pk = noise.perm.at(c0[2] + c);
+                for b in 0..3 {
+                    for a in 0..3 {
+                        self.entries[(9 * a + 3 * b + c) as usize] = noise.hash3([c0[0], c0[1]], [a, b], pk);
                     }
                 }
             }
