@@ -118,7 +118,6 @@ impl Lanes for X8 {
     type Int = I8;
     type Mask = M8;
     const WIDTH: usize = 8;
-    const CHUNK_TABLES: bool = true;
 
     #[inline(always)]
     fn splat(x: f32) -> Self {

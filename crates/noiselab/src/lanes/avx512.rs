@@ -116,7 +116,6 @@ impl Lanes for X16 {
     type Int = I16;
     type Mask = M16;
     const WIDTH: usize = 16;
-    const CHUNK_TABLES: bool = true;
 
     #[inline(always)]
     fn splat(x: f32) -> Self {

@@ -65,12 +65,6 @@ pub trait Lanes:
     type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
     /// Number of lanes.
     const WIDTH: usize;
-    /// Whether a grid kernel should replace per-lane table lookups by a
-    /// small table built per chunk when the chunk's lanes share their
-    /// cells: true for batch lanes, where a lookup costs a load per lane
-    /// (AVX2, the baseline's arrays) or a chain of byte permutes (AVX-512
-    /// VBMI's 256-entry lookup); false for one lane.
-    const CHUNK_TABLES: bool = false;
 
     /// Every lane set to `x`.
     fn splat(x: Self::Elem) -> Self;

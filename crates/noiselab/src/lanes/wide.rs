@@ -157,7 +157,6 @@ macro_rules! wide_lanes {
             type Int = $i;
             type Mask = $m;
             const WIDTH: usize = $n;
-            const CHUNK_TABLES: bool = true;
 
             #[inline(always)]
             fn splat(x: f32) -> Self {
