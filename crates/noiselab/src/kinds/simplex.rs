@@ -138,6 +138,13 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
     /// NaN for non-finite input.
     #[inline(always)]
     fn value(&self) -> L {
+        finite_or_nan(self.p, self.value_at_finite())
+    }
+
+    /// [`Self::value`] where every coordinate is known to be finite (a grid
+    /// whose axes are): the same bits there, without the per-chunk guard.
+    #[inline(always)]
+    fn value_at_finite(&self) -> L {
         let mut sum = L::cst(0.0);
         for c in 0..C {
             let (t, dot) = self.falloff_and_dot(c);
@@ -145,7 +152,7 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
             let n = L::select(t.lt(L::cst(0.0)), L::cst(0.0), t2 * t2 * dot);
             sum = if c == 0 { n } else { sum + n };
         }
-        finite_or_nan(self.p, L::cst(self.scale) * sum)
+        L::cst(self.scale) * sum
     }
 
     /// The noise and its gradient. Inside a simplex `d` moves with the
@@ -336,6 +343,9 @@ impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
 struct TableReuse<'a, const D: usize> {
     noise: &'a Simplex,
     memo: ChunkTable,
+    /// Whether every coordinate of the grid is finite, so no chunk needs
+    /// the NaN guard.
+    finite: bool,
 }
 
 /// 1 where the mask is set, else 0.
@@ -533,13 +543,15 @@ macro_rules! impl_simplex_tabled {
             }
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
-                grid::fill_chunks::<_, B, $d>(&mut TableReuse { noise: self, memo: ChunkTable::empty() }, span, out)
+                let finite = span.axes.all_finite();
+                grid::fill_chunks::<_, B, $d>(&mut TableReuse { noise: self, memo: ChunkTable::empty(), finite }, span, out)
             }
         }
         impl<B: BatchLanes> ChunkSampler<B, $d> for TableReuse<'_, $d> {
             #[inline(always)]
             fn sample(&mut self, p: [B; $d]) -> B {
-                self.noise.$corners(p, &mut self.memo).value()
+                let corners = self.noise.$corners(p, &mut self.memo);
+                if self.finite { corners.value_at_finite() } else { corners.value() }
             }
         }
         impl NoiseGradient<$d> for Simplex {
