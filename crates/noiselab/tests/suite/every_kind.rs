@@ -170,6 +170,11 @@ fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
             1 => 37,
             _ => 2,
         })),
+        // Non-finite coordinates (NaN where the scalar API gives NaN): the
+        // last axis at 0.3 + i·∞ (NaN, then +∞), and axis 0 from 3.0e38 by
+        // 1e37, past f32::MAX (≈ 3.4e38) from column 5 of each row.
+        Grid::new([0.3; D], core::array::from_fn(|d| if d == D - 1 { f64::INFINITY } else { 0.0625 }), size(37, 2)),
+        Grid::new(core::array::from_fn(|d| if d == 0 { 3.0e38 } else { 0.3 }), core::array::from_fn(|d| if d == 0 { 1.0e37 } else { 0.25 }), size(37, 2)),
     ]
 }
 
@@ -240,46 +245,6 @@ fn special_inputs_follow_the_contract() {
     macro_rules! check {
         ($name:expr, $noise:expr, $d:literal, $range:expr) => {
             check_special::<_, $d>($name, &$noise)
-        };
-    }
-    for_every_kind!(check);
-}
-
-/// Grid fills with non-finite coordinates give each point the scalar API's
-/// bits (NaN where a coordinate is not finite), at every level: rows whose
-/// points are all finite but for the last axis, and rows where axis 0
-/// overflows `f32` part of the way along (finite, then infinite).
-#[inline(never)]
-fn check_special_grids<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
-    let last = D - 1;
-    let mut grids = Vec::new();
-    // The last axis at 0.3 + i·∞: NaN, then +∞ (axis 0 finite when D > 1).
-    let mut step = [0.0625; D];
-    step[last] = f64::INFINITY;
-    grids.push(Grid::new([0.3; D], step, core::array::from_fn(|d| if d == 0 { 37 } else { 2 })));
-    // Axis 0 from 3.0e38 by 1e37: past f32::MAX (≈ 3.4e38) from column 5.
-    let mut origin = [0.3; D];
-    origin[0] = 3.0e38;
-    let mut step = [0.25; D];
-    step[0] = 1.0e37;
-    grids.push(Grid::new(origin, step, core::array::from_fn(|d| if d == 0 { 37 } else { 2 })));
-    for level in SimdLevel::available() {
-        for grid in &grids {
-            let mut out = vec![0f32; grid.len()];
-            fill_grid_at(level, noise, grid, &mut out, Accuracy::Exact).unwrap();
-            for (i, &b) in out.iter().enumerate() {
-                let s = noise.get_f32(grid.point(i));
-                assert!(same(s, b), "{name} {D}D {level:?}: grid {grid:?} point {:?}: scalar {s:e} batch {b:e}", grid.point(i));
-            }
-        }
-    }
-}
-
-#[test]
-fn grids_with_special_coordinates_equal_the_scalar_api() {
-    macro_rules! check {
-        ($name:expr, $noise:expr, $d:literal, $range:expr) => {
-            check_special_grids::<_, $d>($name, &$noise)
         };
     }
     for_every_kind!(check);
