@@ -239,19 +239,11 @@ macro_rules! wide_lanes {
             }
             #[inline(always)]
             fn lookup16(table: &[f32; 16], idx: $i) -> Self {
-                let mut out = [0f32; $n];
-                for k in 0..$n {
-                    out[k] = table[(idx.0[k] & 15) as usize];
-                }
-                $f(out)
+                Self::gather(table, idx.and_c(15))
             }
             #[inline(always)]
             fn lookup8(table: &[f32; 8], idx: $i) -> Self {
-                let mut out = [0f32; $n];
-                for k in 0..$n {
-                    out[k] = table[(idx.0[k] & 7) as usize];
-                }
-                $f(out)
+                Self::gather(table, idx.and_c(7))
             }
             #[inline(always)]
             fn gather(table: &[f32], idx: $i) -> Self {
