@@ -527,13 +527,6 @@ impl<B: BatchLanes, const NEAR: bool> Source<B> for PerLane<'_, B, NEAR> {
     }
 }
 
-/// `v` as `len` zeros, in the room it already has.
-fn zeros<T: Copy + Default>(v: &mut Vec<T>, len: usize) -> &mut Vec<T> {
-    v.clear();
-    v.resize(len, T::default());
-    v
-}
-
 /// The cell, position and fade of each coordinate, into `cell`, `frac`
 /// and `fade` (`padded` entries, whole lanes and at least the coordinates
 /// rounded up to them; entries past them repeat the last coordinate's,
@@ -1430,7 +1423,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // Each cell's four half-blends, four coefficients each.
     let mut halves = Columns::kept_in(kept_halves, 16, room);
     // Each chunk's band coefficients, chunk by chunk.
-    let coef = zeros(coef, chunks.len() * 4 * w);
+    super::unwritten(coef, chunks.len() * 4 * w);
     // Chunks before `whole` store all their lanes inside the row; the
     // rest, at its end, store as many as fit.
     let whole = chunks.partition_point(|ch| ch.start + w <= nx);

@@ -92,6 +92,19 @@ pub(crate) fn is_finite<L: Lanes>(x: L) -> L::Mask {
     (x - x).le(L::cst(0.0))
 }
 
+/// `v` resized to `len` values in the room it has, its contents
+/// unspecified: what an earlier use left, or zeros; NaN in debug builds,
+/// so that a result read from an entry its caller did not write is NaN
+/// and fails the bit-exact tests.
+pub(crate) fn unwritten(v: &mut Vec<f32>, len: usize) {
+    if cfg!(debug_assertions) {
+        v.clear();
+        v.resize(len, f32::NAN);
+    } else {
+        v.resize(len, 0.0);
+    }
+}
+
 /// A field-major table of records for consecutive entries (lattice points
 /// or cells along axis 0): field k of entry e at `[k·stride + e]`, so
 /// consecutive entries load and store as lanes. Integer fields are stored
@@ -108,17 +121,23 @@ impl Columns {
     /// per-thread scratch buffer ([`crate::scratch`]): hand it back with
     /// [`Columns::recycle`].
     pub(crate) fn new(fields: usize, entries: usize) -> Self {
-        Self::kept_in(&mut crate::scratch::take(fields * entries), fields, entries)
-    }
-
-    /// [`Columns::new`] in `kept`, a vector its caller keeps between fills
-    /// (left empty until [`Columns::keep_in`] puts it back): no trip
-    /// through the scratch pool, which cost a 32² tile of 2D improved
-    /// noise about 230 instructions a table (callgrind, probe, AVX2).
-    pub(crate) fn kept_in(kept: &mut Vec<f32>, fields: usize, entries: usize) -> Self {
-        let mut data = core::mem::take(kept);
+        let mut data = crate::scratch::take(fields * entries);
         data.clear();
         data.resize(fields * entries, 0.0);
+        Columns { stride: entries, fields, data }
+    }
+
+    /// Room for `fields` fields of `entries` entries in `kept`, a vector
+    /// its caller keeps between fills (left empty until
+    /// [`Columns::keep_in`] puts it back): no trip through the scratch
+    /// pool, which cost a 32² tile of 2D improved noise about 230
+    /// instructions a table (callgrind, probe, AVX2). The contents are
+    /// unspecified ([`unwritten`]): a caller reads only what it wrote, but
+    /// for lanes whose results it never stores. (Zeroing took a tenth of a
+    /// 32² tile's time: 8 KiB a tile on AVX-512, perf.)
+    pub(crate) fn kept_in(kept: &mut Vec<f32>, fields: usize, entries: usize) -> Self {
+        let mut data = core::mem::take(kept);
+        unwritten(&mut data, fields * entries);
         Columns { stride: entries, fields, data }
     }
 
