@@ -95,8 +95,35 @@ impl<const D: usize> Grid<D> {
         coords
     }
 
-    /// [`Grid::axis_coords`] into `out` (its length the axis's size).
+    /// [`Grid::axis_coords`] into `out` (its length the axis's size),
+    /// compiled for the widest registers the CPU has: the same IEEE
+    /// operations, so the same bits, in a quarter of the baseline's
+    /// instructions on AVX-512 (at the baseline, a 32² tile's two axes were
+    /// 6 % of its fast fill, perf).
     fn write_axis(&self, d: usize, out: &mut [f32]) {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        {
+            #[target_feature(enable = "avx512f")]
+            unsafe fn avx512<const D: usize>(grid: &Grid<D>, d: usize, out: &mut [f32]) {
+                grid.write_axis_here(d, out)
+            }
+            #[target_feature(enable = "avx2")]
+            unsafe fn avx2<const D: usize>(grid: &Grid<D>, d: usize, out: &mut [f32]) {
+                grid.write_axis_here(d, out)
+            }
+            match best_level() {
+                // SAFETY: the CPU reports the level's features.
+                SimdLevel::Avx512 => return unsafe { avx512(self, d, out) },
+                SimdLevel::Avx2 => return unsafe { avx2(self, d, out) },
+                SimdLevel::Baseline => {}
+            }
+        }
+        self.write_axis_here(d, out)
+    }
+
+    /// [`Grid::write_axis`] at the instruction set of its caller.
+    #[inline(always)]
+    fn write_axis_here(&self, d: usize, out: &mut [f32]) {
         let (origin, step) = (self.origin[d], self.step[d]);
         // Counting in `i32` where it fits: its conversion to `f64` vectorises
         // at the baseline instruction set, `usize`'s does not. Both are exact,
