@@ -182,6 +182,9 @@ pub struct Axes<const D: usize> {
 }
 
 impl<const D: usize> Axes<D> {
+    /// No points on any axis, holding no buffer.
+    pub(crate) const EMPTY: Self = Axes { coords: Vec::new(), ends: [0; D] };
+
     /// The axes of `grid`.
     pub fn of(grid: &Grid<D>) -> Self {
         let mut axes = Self::room(grid.size);

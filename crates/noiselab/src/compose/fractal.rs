@@ -580,8 +580,13 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         let nx = span.axes.size(0).max(1);
         // From the whole grid's axes, so every span (and thread) agrees.
         let count = self.octaves_for(span.axes);
-        // Each kept octave's axes (scratch buffers, given back below).
-        let scaled: Vec<Axes<D>> = self.steps.frequency[..count].iter().map(|&f| span.axes.scaled(f as f32)).collect();
+        // Each kept octave's axes (scratch buffers, given back below), in
+        // an array: collected into a `Vec`, they were a malloc and a free
+        // per call (2 % of a 32² tile of fBm-6, perf).
+        let mut scaled = [const { Axes::EMPTY }; MAX_OCTAVES as usize];
+        for (axes, &f) in scaled.iter_mut().zip(&self.steps.frequency[..count]) {
+            *axes = span.axes.scaled(f as f32);
+        }
         // An octave of gradient noise whose grid lies on integer points is
         // ±0 at every point (on a grid of spacing 2⁻ᵏ from integers, every
         // octave from the k-th on): it is not filled, and reads as +0. The
@@ -589,7 +594,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         // n, and fBm's sum starts at +0 and is never −0 (a sum is −0 only
         // if both addends are), so adding −0 or +0 to it gives the same.
         let mut on_integers = [false; MAX_OCTAVES as usize];
-        for ((skip, noise), axes) in on_integers.iter_mut().zip(&self.octaves).zip(&scaled) {
+        for ((skip, noise), axes) in on_integers.iter_mut().zip(&self.octaves).zip(&scaled[..count]) {
             *skip = noise.zero_at_integers() && axes.all_integers();
         }
         // fBm adds each octave's term, and +0 at a finite amplitude is a
@@ -644,8 +649,8 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             done += len;
         }
         crate::scratch::give_back(buffers);
-        for axes in scaled {
-            axes.recycle();
+        for axes in &mut scaled[..count] {
+            core::mem::replace(axes, Axes::EMPTY).recycle();
         }
     }
 }
