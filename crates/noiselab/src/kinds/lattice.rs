@@ -995,6 +995,10 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         if near && span.accuracy == Accuracy::Fast && D >= 2 && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1)) {
             chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk { start: k * w, end: (k * w + w).min(cols), cell: a.first }));
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
+            // Back to the kept vector, which the bands take: held here, it
+            // left them an empty one, so every call allocated their table
+            // and freed this one (a malloc and a free per fBm tile, perf).
+            bound.keep_in(kept_bound);
             let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
             fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
             point_rows.records.keep_in(kept_records);

@@ -145,7 +145,7 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
 /// Grids that exercise the batch drivers' cases: runs of one cell longer and
 /// shorter than the lanes, rows not a multiple of the lane width, negative
 /// and zero steps, cell borders, negative and far coordinates.
-fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
+pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
     let size = |x: usize, rest: usize| core::array::from_fn(|d| if d == 0 { x } else { rest });
     let rest = if D > 2 { 3 } else { 5 };
     vec![

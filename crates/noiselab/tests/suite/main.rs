@@ -9,11 +9,15 @@
 
 mod common;
 
+// First: `allocations` runs its check over `every_kind`'s kinds.
+#[macro_use]
+mod every_kind;
+
+mod allocations;
 mod compose;
 mod conformance_classic;
 mod conformance_improved;
 mod conformance_simplex;
-mod every_kind;
 mod fractal;
 mod gradients;
 mod grid_fast;
