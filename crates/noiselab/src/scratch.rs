@@ -34,6 +34,82 @@ std::thread_local! {
     static POOL: core::cell::Cell<Vec<Vec<f32>>> = const { core::cell::Cell::new(Vec::new()) };
 }
 
+/// Working vectors that a kind's grid fill keeps per thread between calls
+/// (its tables of cells, runs and chunk plans), so a warm fill allocates
+/// nothing: declared with [`per_thread!`], taken whole at the start of a
+/// fill and kept again at its end. Taken whole, a fill nested inside
+/// another (a warp's source inside its fill) finds none kept and
+/// allocates its own.
+pub(crate) trait KeptVectors: Default + 'static {
+    /// Bytes the vectors hold (their capacities).
+    fn held_bytes(&self) -> usize;
+}
+
+/// The bytes a vector holds.
+pub(crate) fn bytes_of<T>(v: &Vec<T>) -> usize {
+    v.capacity() * core::mem::size_of::<T>()
+}
+
+/// One [`KeptVectors`] per thread (none without `std`: each fill then
+/// allocates). Declared with [`per_thread!`].
+pub(crate) struct PerThread<T: 'static> {
+    #[cfg(feature = "std")]
+    pub(crate) slot: &'static std::thread::LocalKey<core::cell::Cell<Option<alloc::boxed::Box<T>>>>,
+    #[cfg(not(feature = "std"))]
+    pub(crate) kind: core::marker::PhantomData<fn() -> T>,
+}
+
+impl<T: KeptVectors> PerThread<T> {
+    /// Most bytes a thread keeps in one slot (about 35,000 columns of a
+    /// lattice fill's tables): a fill of longer rows allocates per call, a
+    /// small cost beside its work.
+    const KEPT_BYTES: usize = 1 << 20;
+
+    /// This thread's kept vectors, or new empty ones. Boxed, so taking and
+    /// keeping them moves a pointer, not the vectors' headers. Not
+    /// borrowed in place: the fill would then run in `with`'s closure,
+    /// which is compiled without the instruction set of its caller (5× the
+    /// instructions, lattice 2D tiles).
+    #[inline(always)]
+    pub(crate) fn take(&self) -> alloc::boxed::Box<T> {
+        #[cfg(feature = "std")]
+        return self.slot.with(core::cell::Cell::take).unwrap_or_default();
+        #[cfg(not(feature = "std"))]
+        alloc::boxed::Box::default()
+    }
+
+    /// Keep `kept` for this thread's next fill, unless it holds more
+    /// than the bound (then it is freed).
+    #[inline(always)]
+    pub(crate) fn keep(&self, kept: alloc::boxed::Box<T>) {
+        if kept.held_bytes() > Self::KEPT_BYTES {
+            return;
+        }
+        #[cfg(feature = "std")]
+        self.slot.with(|slot| slot.set(Some(kept)));
+        #[cfg(not(feature = "std"))]
+        drop(kept);
+    }
+}
+
+/// `per_thread!(NAME: Type)` declares `static NAME: PerThread<Type>`.
+macro_rules! per_thread {
+    ($name:ident: $ty:ty) => {
+        static $name: crate::scratch::PerThread<$ty> = {
+            #[cfg(feature = "std")]
+            {
+                std::thread_local! {
+                    static SLOT: core::cell::Cell<Option<alloc::boxed::Box<$ty>>> = const { core::cell::Cell::new(None) };
+                }
+                crate::scratch::PerThread { slot: &SLOT }
+            }
+            #[cfg(not(feature = "std"))]
+            crate::scratch::PerThread { kind: core::marker::PhantomData }
+        };
+    };
+}
+pub(crate) use per_thread;
+
 /// A buffer of at least `len` values (their contents unspecified: left
 /// from an earlier use, or zero).
 pub(crate) fn take(len: usize) -> Vec<f32> {

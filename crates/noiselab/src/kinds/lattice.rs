@@ -608,34 +608,20 @@ struct Tables {
     band_coef: Vec<f32>,
 }
 
-#[cfg(feature = "std")]
-std::thread_local! {
-    static KEPT_TABLES: core::cell::Cell<Option<alloc::boxed::Box<Tables>>> = const { core::cell::Cell::new(None) };
-}
+crate::scratch::per_thread!(KEPT_TABLES: Tables);
 
-#[cfg(feature = "std")]
-impl Tables {
-    /// Most bytes a thread keeps (about 35,000 columns' worth): a fill of
-    /// longer rows allocates per call, a small cost beside its work.
-    const KEPT_BYTES: usize = 1 << 20;
-
-    /// Forget the vectors if together they hold more than the bound.
-    fn keep_within_bound(&mut self) {
-        fn bytes<T>(v: &Vec<T>) -> usize {
-            v.capacity() * core::mem::size_of::<T>()
-        }
+impl crate::scratch::KeptVectors for Tables {
+    fn held_bytes(&self) -> usize {
+        use crate::scratch::bytes_of;
         let floats = [&self.records, &self.bound, &self.bound_upper, &self.coef, &self.blends, &self.frac0, &self.fade0, &self.frac1, &self.fade1, &self.band_coef];
-        let held = floats.into_iter().map(bytes).sum::<usize>()
-            + bytes(&self.cell0)
-            + bytes(&self.cell1)
-            + bytes(&self.runs)
-            + bytes(&self.chunks)
-            + bytes(&self.chunk_axis)
-            + bytes(&self.span_of)
-            + bytes(&self.plane_rows);
-        if held > Self::KEPT_BYTES {
-            *self = Tables::default();
-        }
+        floats.into_iter().map(bytes_of).sum::<usize>()
+            + bytes_of(&self.cell0)
+            + bytes_of(&self.cell1)
+            + bytes_of(&self.runs)
+            + bytes_of(&self.chunks)
+            + bytes_of(&self.chunk_axis)
+            + bytes_of(&self.span_of)
+            + bytes_of(&self.plane_rows)
     }
 }
 
@@ -826,20 +812,9 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     span: Span<'_, D>,
     out: &mut [f32],
 ) {
-    // Boxed, so taking and keeping them moves a pointer, not the vectors'
-    // headers (a memcpy a fill). Not borrowed in place: the fill would then
-    // run in `with`'s closure, which is compiled without the instruction
-    // set of its caller (5× the instructions).
-    #[cfg(feature = "std")]
-    {
-        let mut tables = KEPT_TABLES.with(core::cell::Cell::take).unwrap_or_default();
-        fill_span_with::<K, B, D>(kind, span, out, &mut tables);
-        tables.keep_within_bound();
-        KEPT_TABLES.with(|kept| kept.set(Some(tables)));
-    }
-    // Without `std` there are no thread-locals: each fill allocates.
-    #[cfg(not(feature = "std"))]
-    fill_span_with::<K, B, D>(kind, span, out, &mut Tables::default());
+    let mut tables = KEPT_TABLES.take();
+    fill_span_with::<K, B, D>(kind, span, out, &mut tables);
+    KEPT_TABLES.keep(tables);
 }
 
 /// [`fill_span`] with the thread's kept vectors.

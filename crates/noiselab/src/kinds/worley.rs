@@ -369,15 +369,19 @@ impl Worley {
         if !xs[lo..hi].iter().all(|x| x.abs() < 1e9) {
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
-        let cells: Vec<i32> = xs[lo..hi].iter().map(|x| x.floor() as i32).collect();
-        let (min_cell, max_cell) = cell_range(&cells);
+        let mut kept = KEPT_VECTORS.take();
+        let GridVectors { cells, redo, reach } = &mut *kept;
+        cells.clear();
+        cells.extend(xs[lo..hi].iter().map(|x| x.floor() as i32));
+        let (min_cell, max_cell) = cell_range(cells);
         let ncell = (max_cell - min_cell) as usize + 1;
         if ncell > 2 * (hi - lo) + 64 {
+            KEPT_VECTORS.keep(kept);
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
         let along = self.columns_along::<B>(&xs[lo..hi]);
-        let mut plan = ChunkPlan { first: usize::MAX, reach: Vec::new(), one_cell: false };
-        let mut redo = Vec::with_capacity((hi - lo).div_ceil(w));
+        let mut plan = ChunkPlan { first: usize::MAX, reach: core::mem::take(reach), one_cell: false };
+        redo.clear();
         // The feature points of cells min_cell − 1 ..= max_cell + 1 (column
         // c is cell min_cell − 1 + c) in each row of cells around the grid
         // row, laid out by `Features`.
@@ -449,7 +453,7 @@ impl Worley {
                 edge = edge.min(f).min(B::cst(1.0) - f);
             }
             if plan.first != i0 {
-                plan = ChunkPlan::new::<B>(&cells, lo, i0, min_cell);
+                plan.replan::<B>(cells, lo, i0, min_cell);
             }
             if plan.one_cell {
                 if tables_plane != plane {
@@ -477,26 +481,28 @@ impl Worley {
             // slower. Each arm is another copy of the loop (13-17 s more to
             // build a test that fills Worley grids), so the rest share one.
             match (self.metric, self.output) {
-                _ if D > 3 => self.row_points::<B, D>(&row, i0, row_out, &mut redo),
+                _ if D > 3 => self.row_points::<B, D>(&row, i0, row_out, redo),
                 (Metric::Euclidean, CellOutput::F1) => {
-                    self.fixed(Metric::Euclidean, CellOutput::F1).row_points::<B, D>(&row, i0, row_out, &mut redo)
+                    self.fixed(Metric::Euclidean, CellOutput::F1).row_points::<B, D>(&row, i0, row_out, redo)
                 }
                 (Metric::Euclidean, CellOutput::F2) => {
-                    self.fixed(Metric::Euclidean, CellOutput::F2).row_points::<B, D>(&row, i0, row_out, &mut redo)
+                    self.fixed(Metric::Euclidean, CellOutput::F2).row_points::<B, D>(&row, i0, row_out, redo)
                 }
                 (Metric::Manhattan, CellOutput::F1) => {
-                    self.fixed(Metric::Manhattan, CellOutput::F1).row_points::<B, D>(&row, i0, row_out, &mut redo)
+                    self.fixed(Metric::Manhattan, CellOutput::F1).row_points::<B, D>(&row, i0, row_out, redo)
                 }
                 (Metric::Manhattan, CellOutput::F2) => {
-                    self.fixed(Metric::Manhattan, CellOutput::F2).row_points::<B, D>(&row, i0, row_out, &mut redo)
+                    self.fixed(Metric::Manhattan, CellOutput::F2).row_points::<B, D>(&row, i0, row_out, redo)
                 }
-                _ => self.row_points::<B, D>(&row, i0, row_out, &mut redo),
+                _ => self.row_points::<B, D>(&row, i0, row_out, redo),
             }
         }
         features.recycle();
         plane_table.recycle();
         row_table.recycle();
         along.recycle();
+        *reach = plan.reach;
+        KEPT_VECTORS.keep(kept);
     }
 
     /// For grid columns at `xs`: each one's position in its cell
@@ -822,14 +828,35 @@ struct ChunkPlan {
     one_cell: bool,
 }
 
+/// The grid fill's vectors, kept by each thread between calls
+/// ([`crate::scratch::KeptVectors`]): the span's column cells, the chunks
+/// left to the point path, and the chunk plan's runs.
+#[derive(Default)]
+struct GridVectors {
+    cells: Vec<i32>,
+    redo: Vec<usize>,
+    reach: Vec<(Reach, usize)>,
+}
+
+crate::scratch::per_thread!(KEPT_VECTORS: GridVectors);
+
+impl crate::scratch::KeptVectors for GridVectors {
+    fn held_bytes(&self) -> usize {
+        use crate::scratch::bytes_of;
+        bytes_of(&self.cells) + bytes_of(&self.redo) + bytes_of(&self.reach)
+    }
+}
+
 impl ChunkPlan {
-    /// The chunks from column `first` on of columns `lo..` in `cells`, the
-    /// first of which is `min_cell`. A piece that ends early reads a prefix
-    /// of its last chunk's plan, which holds for fewer lanes too.
-    fn new<B: BatchLanes>(cells: &[i32], lo: usize, first: usize, min_cell: i32) -> ChunkPlan {
+    /// Plan the chunks from column `first` on of columns `lo..` in
+    /// `cells`, the first of which is `min_cell`. A piece that ends early
+    /// reads a prefix of its last chunk's plan, which holds for fewer lanes
+    /// too.
+    fn replan<B: BatchLanes>(&mut self, cells: &[i32], lo: usize, first: usize, min_cell: i32) {
         let w = B::WIDTH;
         let from = first - lo;
-        let mut reach = Vec::with_capacity((cells.len() - from).div_ceil(w));
+        let reach = &mut self.reach;
+        reach.clear();
         let mut one_cell = false;
         for chunk in cells[from..].chunks(w) {
             let (a, b) = cell_range(chunk);
@@ -847,7 +874,7 @@ impl ChunkPlan {
                 _ => reach.push((this, 1)),
             }
         }
-        ChunkPlan { first, reach, one_cell }
+        (self.first, self.one_cell) = (first, one_cell);
     }
 }
 
