@@ -97,8 +97,9 @@ impl Sparse {
             return Noise::<D>::fill_grid(self, grid, out).map_err(SplatError::Grid);
         }
 
-        let xs = grid.axis_coords(0);
-        let ys = grid.axis_coords(1);
+        // The axes in the thread's scratch pool, as the grid fills take them.
+        let axes = crate::grid::Axes::of(grid);
+        let (xs, ys) = (axes.axis(0), axes.axis(1));
         let mut slice = [0f32; D];
         for (d, s) in slice.iter_mut().enumerate().skip(2) {
             *s = grid.coord(d, 0) as f32;
@@ -106,7 +107,7 @@ impl Sparse {
         let (scale, offset) = self.output_scale(D);
         let render_band = |j0: usize, rows: &mut [f32]| {
             rows.fill(0.0);
-            self.splat_band::<D>(&xs, &ys[j0..j0 + rows.len() / w], &slice, rows);
+            self.splat_band::<D>(xs, &ys[j0..j0 + rows.len() / w], &slice, rows);
             for v in rows.iter_mut() {
                 *v = (*v as f64 * scale + offset) as f32;
             }
@@ -120,6 +121,7 @@ impl Sparse {
         for (b, rows) in out.chunks_mut(BAND * w).enumerate() {
             render_band(b * BAND, rows);
         }
+        axes.recycle();
         Ok(())
     }
 

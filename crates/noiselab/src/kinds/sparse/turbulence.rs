@@ -46,14 +46,25 @@ impl SparseTurbulence {
     where
         Sparse: Noise<D>,
     {
-        let mut octave = Vec::new();
-        octave.resize(out.len(), 0f32);
+        // The octave's buffer from the thread's scratch pool: a window's
+        // worth, which a fresh allocation would zero and map on every call.
+        let mut octave = crate::scratch::take(out.len());
+        let sum = self.sum_octaves(grid, out, &mut octave[..out.len()]);
+        crate::scratch::give_back(octave);
+        sum
+    }
+
+    /// [`SparseTurbulence::splat_grid`], each octave splatted into `octave`.
+    fn sum_octaves<const D: usize>(&self, grid: &Grid<D>, out: &mut [f32], octave: &mut [f32]) -> Result<(), super::SplatError>
+    where
+        Sparse: Noise<D>,
+    {
         out.fill(0.0);
         for (noise, freq) in &self.octaves {
             let scaled = Grid::new(grid.origin.map(|o| o * freq), grid.step.map(|s| s * freq), grid.size);
-            noise.splat_grid(&scaled, &mut octave)?;
+            noise.splat_grid(&scaled, octave)?;
             let amp = (1.0 / freq) as f32;
-            for (o, v) in out.iter_mut().zip(&octave) {
+            for (o, v) in out.iter_mut().zip(octave.iter()) {
                 *o += amp * v.abs();
             }
         }
