@@ -562,7 +562,7 @@ fn points_3d(c: &mut Criterion) {
 
     let mut g = Case::new(c, "3d_perlin_points", POINTS);
     let lab = Improved::new(SEED);
-    g.fill("noiselab", out, |o| LabNoise::<3>::fill_points(&lab, &p32, o));
+    g.fill("noiselab", out, |o| LabNoise::<3>::fill_points(&lab, &p32, o).unwrap());
     let rs = noise::Perlin::new(SEED);
     g.fill("noise-rs", out, |o| loop_points(o, &p64, |p| rs.get(p) as f32));
     let lite = fnl(NoiseType::Perlin);

@@ -44,6 +44,13 @@ pub enum GridError {
     },
     /// The number of points overflows `usize`.
     TooLarge,
+    /// A point list and its output differ in length.
+    PointsMismatch {
+        /// Points given.
+        points: usize,
+        /// Length of the output buffer given.
+        out: usize,
+    },
 }
 
 impl fmt::Display for GridError {
@@ -53,6 +60,7 @@ impl fmt::Display for GridError {
                 write!(f, "output buffer holds {got} values but the grid has {expected} points")
             }
             GridError::TooLarge => write!(f, "grid has more points than fit in memory"),
+            GridError::PointsMismatch { points, out } => write!(f, "output buffer holds {out} values for {points} points"),
         }
     }
 }
@@ -586,7 +594,7 @@ pub(crate) fn fill_span_best<N: Noise<D>, const D: usize>(noise: &N, span: Span<
     noise.dispatch_span(best_level(), span, out)
 }
 
-pub(crate) fn fill_points<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) {
+pub(crate) fn fill_points<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) -> Result<(), GridError> {
     fill_points_at(best_level(), noise, points, out)
 }
 
@@ -596,8 +604,10 @@ pub fn fill_points_at<N: Noise<D>, const D: usize>(
     noise: &N,
     points: &[[f32; D]],
     out: &mut [f32],
-) {
-    assert_eq!(points.len(), out.len(), "fill_points: points and output differ in length");
+) -> Result<(), GridError> {
+    if points.len() != out.len() {
+        return Err(GridError::PointsMismatch { points: points.len(), out: out.len() });
+    }
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
@@ -605,10 +615,11 @@ pub fn fill_points_at<N: Noise<D>, const D: usize>(
             out.par_chunks_mut(PAR_CHUNK)
                 .zip(points.par_chunks(PAR_CHUNK))
                 .for_each(|(o, p)| noise.dispatch_points(level, p, o));
-            return;
+            return Ok(());
         }
     }
-    noise.dispatch_points(level, points, out)
+    noise.dispatch_points(level, points, out);
+    Ok(())
 }
 
 /// The level to run for a request of `level`: the best the CPU has up to it.

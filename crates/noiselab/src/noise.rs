@@ -58,10 +58,9 @@ pub trait Noise<const D: usize>: Send + Sync {
         grid::fill_grid(self, grid, out, Accuracy::Fast)
     }
 
-    /// Fill `out[i]` with the field at `points[i]`.
-    ///
-    /// Panics if the slices differ in length.
-    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32])
+    /// Fill `out[i]` with the field at `points[i]`; an error, with
+    /// nothing written, where the slices differ in length.
+    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]) -> Result<(), GridError>
     where
         Self: Sized,
     {
@@ -169,7 +168,7 @@ pub trait DynNoise<const D: usize>: Send + Sync {
     /// [`Noise::fill_grid`].
     fn fill_grid(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError>;
     /// [`Noise::fill_points`].
-    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]);
+    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]) -> Result<(), GridError>;
     /// Eight lanes at once ([`Noise::sample`] on [`F32x8`]).
     fn sample_x8(&self, p: [F32x8; D]) -> F32x8;
     /// Sixteen lanes at once ([`Noise::sample`] on [`F32x16`]).
@@ -213,7 +212,7 @@ impl<N: Noise<D>, const D: usize> DynNoise<D> for N {
     fn fill_grid(&self, grid: &Grid<D>, out: &mut [f32]) -> Result<(), GridError> {
         Noise::fill_grid(self, grid, out)
     }
-    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]) {
+    fn fill_points(&self, points: &[[f32; D]], out: &mut [f32]) -> Result<(), GridError> {
         Noise::fill_points(self, points, out)
     }
     fn sample_x8(&self, p: [F32x8; D]) -> F32x8 {

@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Accuracy, Axes, Span, Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
+use noiselab::{Accuracy, Axes, Span, Classic, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -107,7 +107,7 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
     let scalar: Vec<f32> = pts.iter().map(|&p| noise.get_f32(p)).collect();
     for level in SimdLevel::available() {
         let mut out = vec![0f32; pts.len()];
-        fill_points_at(level, noise, &pts, &mut out);
+        fill_points_at(level, noise, &pts, &mut out).unwrap();
         for (i, (&s, &b)) in scalar.iter().zip(&out).enumerate() {
             assert!(same(s, b), "{name} {D}D {level:?}: point {:?}: scalar {s:e} batch {b:e}", pts[i]);
         }
@@ -238,6 +238,15 @@ fn check_special<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
         let pf = p.map(|c| (c as f32).clamp(f32::MIN, f32::MAX));
         assert!(noise.get_f32(pf).is_finite(), "{name} {D}D f32: {pf:?} not finite");
     }
+    // Batches whose output does not fit: a typed error, nothing written.
+    let mut out = [7.0f32; 3];
+    assert_eq!(noise.fill_points(&[[0.5; D]; 2], &mut out), Err(GridError::PointsMismatch { points: 2, out: 3 }), "{name} {D}D");
+    let grid = Grid::new([0.0; D], [0.5; D], [2; D]);
+    for accuracy in [Accuracy::Exact, Accuracy::Fast] {
+        let filled = fill_grid_at(SimdLevel::best(), noise, &grid, &mut out, accuracy);
+        assert_eq!(filled, Err(GridError::LengthMismatch { expected: grid.len(), got: 3 }), "{name} {D}D");
+    }
+    assert_eq!(out, [7.0; 3], "{name} {D}D: a refused batch wrote");
 }
 
 #[test]
@@ -278,7 +287,7 @@ fn check_any<N: Noise<D>, const D: usize>(name: &str, noise: &N, coords: &[f64])
     let vf = noise.get_f32(pf);
     assert_eq!(vf.is_nan(), pf.iter().any(|c| !c.is_finite()), "{name} {D}D f32: {pf:?} gave {vf}");
     let mut out = [0f32; 1];
-    noise.fill_points(&[pf], &mut out);
+    noise.fill_points(&[pf], &mut out).unwrap();
     assert!(same(out[0], vf), "{name} {D}D: batch {} != scalar {vf} at {pf:?}", out[0]);
 }
 
