@@ -38,8 +38,7 @@ std::thread_local! {
 /// (its tables of cells, runs and chunk plans), so a warm fill allocates
 /// nothing: declared with [`per_thread!`], taken whole at the start of a
 /// fill and kept again at its end. Taken whole, a fill nested inside
-/// another (a warp's source inside its fill) finds none kept and
-/// allocates its own.
+/// another of the same kind finds none kept and allocates its own.
 pub(crate) trait KeptVectors: Default + 'static {
     /// Bytes the vectors hold (their capacities).
     fn held_bytes(&self) -> usize;
