@@ -18,7 +18,7 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         2 => 40,
         _ => 6,
     };
-    vec![
+    let mut grids = vec![
         Grid::new([0.0; D], [1.0 / 32.0; D], size(300, rest)),
         Grid::new([-3.7; D], [1.0 / 7.0; D], size(200, rest)),
         Grid::new([11.3; D], [0.3; D], size(150, rest)),
@@ -28,7 +28,14 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         // Cells narrower than AVX2's and AVX-512's lanes along axis 0 and
         // tall enough for bands along axis 1 (in 3D and 4D as well).
         Grid::new([0.13; D], [0.25; D], core::array::from_fn(|d| [130, 40, 3, 2][d])),
-    ]
+    ];
+    if D == 2 {
+        // Rows wider than a band's block of columns (512), with an odd
+        // chunk and a partial one after the last pair on both AVX2 and
+        // AVX-512.
+        grids.push(Grid::new([2.0; D], [1.0 / 32.0; D], size(1100, 8)));
+    }
+    grids
 }
 
 // Out of line (as every generic helper here): inlined, each test's helpers
