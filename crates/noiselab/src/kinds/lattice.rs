@@ -911,19 +911,27 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     // each kept vector once rather than push by push.
     let chunk_total = cols.div_ceil(w) + runs.len();
     chunks.clear();
-    chunk_axis.clear();
     chunks.reserve(if long_runs { chunk_total } else { 0 });
-    chunk_axis.reserve(chunk_total);
     if long_runs {
+        // Written in place over the kept entries (only lanes below `w` are
+        // read, and long runs read no `lane`): built whole and pushed, each
+        // cost a zeroed 200-byte record and its copy (callgrind, a 32² tile
+        // of 2D improved on AVX2: 1.7 % of the exact fill's instructions,
+        // 2.0 % of the fast one's).
+        chunk_axis.resize(chunk_total, ChunkAxis::ZERO);
+        let mut axes = chunk_axis.iter_mut();
         for &(start, end, cell) in runs.iter() {
-            for s in (start..end).step_by(w) {
+            for (s, a) in (start..end).step_by(w).zip(&mut axes) {
                 chunks.push(Chunk { start: s, end, cell });
-                let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16], lane: [0; 16], first: cell };
+                a.first = cell;
                 a.x[..w].copy_from_slice(&frac0[s..s + w]);
                 a.fade[..w].copy_from_slice(&fade0[s..s + w]);
-                chunk_axis.push(a);
             }
         }
+        chunk_axis.truncate(chunks.len());
+    } else {
+        chunk_axis.clear();
+        chunk_axis.reserve(chunk_total);
     }
     if batches || bands {
         if bands {
@@ -955,7 +963,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     let reach = span_of.iter().map(|c| Some(c.reach(w))).reduce(|a, b| if a == b { a } else { None }).flatten();
     if !long_runs && whole_rows && matches!(reach, Some(Reach::Consecutive | Reach::Near)) {
         for (s, cells) in (0..cols).step_by(w).zip(span_of.iter()) {
-            let mut a = ChunkAxis { x: [0.0; 16], fade: [0.0; 16], lane: [0; 16], first: cells.first };
+            let mut a = ChunkAxis { first: cells.first, ..ChunkAxis::ZERO };
             a.x[..w].copy_from_slice(&frac0[s..s + w]);
             a.fade[..w].copy_from_slice(&fade0[s..s + w]);
             for (l, &c) in a.lane.iter_mut().zip(&cell0[s..s + w]) {
@@ -1855,6 +1863,8 @@ struct ChunkAxis {
 }
 
 impl ChunkAxis {
+    const ZERO: Self = ChunkAxis { x: [0.0; 16], fade: [0.0; 16], lane: [0; 16], first: 0 };
+
     #[inline(always)]
     fn lanes<B: BatchLanes>(&self) -> (B, B) {
         (B::from_slice(&self.x), B::from_slice(&self.fade))
