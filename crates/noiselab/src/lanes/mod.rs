@@ -288,3 +288,16 @@ pub(crate) mod math {
     #[cfg(not(feature = "std"))]
     pub use libm::{floor as floor64, floorf as floor32, sqrt as sqrt64, sqrtf as sqrt32};
 }
+
+/// Ask for the cache line at `p` ahead of a store to it (a hint: never
+/// faults, whatever `p` is).
+#[inline(always)]
+pub(crate) fn prefetch_store(p: *const f32) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads nothing and cannot fault.
+    unsafe {
+        core::arch::x86_64::_mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(p.cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
+}
