@@ -1004,6 +1004,14 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
     let mut band = Band { columns: (0, 0), rows: core::mem::take(plane_rows) };
+    // Grids well past L2 (the whole grid's, not this span's: threads cut
+    // a grid into smaller spans): ask for each chunk's line ahead of its
+    // store.
+    let mut grid_points = 1usize;
+    for d in 0..D {
+        grid_points = grid_points.saturating_mul(span.axes.size(d));
+    }
+    let prefetch = grid_points >= PREFETCH_MIN_VALUES;
 
     for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         // Axes 1..: the same for the whole row.
@@ -1067,8 +1075,6 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         // Column s (from lo) is out[o0 + lo + s − i0]; lanes past the row's
         // end are overwritten by the next run or row, or not stored.
         let row = Row { frac: frac0, fade: fade0, weights, off_line: off_line(f) };
-        // Outputs well past L2: ask for each chunk's line ahead of its store.
-        let prefetch = out.len() >= PREFETCH_MIN_VALUES;
         let row_end = i0 + n - lo;
         let (a0, a1) = (i0 - lo, row_end);
         let whole = a0 == 0 && a1 == cols;
@@ -1556,9 +1562,9 @@ const PREFETCH_AHEAD: usize = 4;
 /// did not change: 0.53.)
 const ROW_PREFETCH_AHEAD: usize = 4096;
 
-/// Fewest output values for which the exact rows prefetch ([`ROW_PREFETCH_AHEAD`]):
-/// 4 MiB, past L2. (Over 512², whose output L2 holds, prefetching measured
-/// 2 % slower.)
+/// Fewest grid points for which the exact rows prefetch ([`ROW_PREFETCH_AHEAD`]):
+/// 4 MiB of output, past L2. (Over 512², whose output L2 holds,
+/// prefetching measured 2 % slower.)
 const PREFETCH_MIN_VALUES: usize = 1 << 20;
 
 /// [`fill_bands`]' rows where chunk k starts at column k · w (`whole`
