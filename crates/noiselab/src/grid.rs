@@ -143,7 +143,8 @@ impl<const D: usize> Grid<D> {
         }
     }
 
-    /// [`Grid::write_axis`] at the instruction set of its caller.
+    /// Axis `d`'s coordinates into `out` (its length the axis's size) at
+    /// the instruction set of its caller ([`Grid::write_axes`]).
     #[inline(always)]
     fn write_axis_here(&self, d: usize, out: &mut [f32]) {
         let (origin, step) = (self.origin[d], self.step[d]);

@@ -1553,8 +1553,8 @@ const BAND_BLOCK_COLUMNS: usize = 512;
 const PREFETCH_AHEAD: usize = 4;
 
 /// How far ahead of a store (in values) the exact rows ask for its line,
-/// where the output holds [`PREFETCH_MIN_VALUES`] or more: two rows of 2048
-/// ahead. (The hardware prefetchers should follow a row's stores, but 2D
+/// where the grid has [`PREFETCH_MIN_VALUES`] points or more: two rows of
+/// 2048 ahead. (The hardware prefetchers should follow a row's stores, but 2D
 /// improved exact over 2048² at 1/32, AVX-512, five alternating probe runs
 /// each, measured 0.30–0.34 ns/point, median 0.31, without and 0.28–0.30,
 /// median 0.28, with; in a noisier stretch, medians 0.35 without, 0.32 at
