@@ -210,21 +210,15 @@ impl<const D: usize> Axes<D> {
 
     /// The axes of `grid`.
     pub fn of(grid: &Grid<D>) -> Self {
-        let (ends, total) = Self::ends_of(grid.size);
-        let mut coords = crate::scratch::take(total);
-        coords.truncate(total);
-        Self::written(grid, coords, ends)
+        let mut axes = Self::room(grid.size);
+        grid.write_axes(0..D, &mut axes.coords);
+        axes
     }
 
     /// The axes of `grid` in `coords` (resized to them).
     fn of_in(grid: &Grid<D>, mut coords: Vec<f32>) -> Self {
         let (ends, total) = Self::ends_of(grid.size);
         coords.resize(total, 0.0);
-        Self::written(grid, coords, ends)
-    }
-
-    /// `grid`'s axes written into `coords` (of the axes' total length).
-    fn written(grid: &Grid<D>, mut coords: Vec<f32>, ends: [usize; D]) -> Self {
         grid.write_axes(0..D, &mut coords);
         Axes { coords, ends }
     }
