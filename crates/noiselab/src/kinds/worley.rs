@@ -370,7 +370,7 @@ impl Worley {
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
         let mut kept = KEPT_VECTORS.take();
-        let GridVectors { cells, redo, reach } = &mut *kept;
+        let GridVectors { cells, redo, reach, chunk_cells } = &mut *kept;
         cells.clear();
         cells.extend(xs[lo..hi].iter().map(|x| x.floor() as i32));
         let (min_cell, max_cell) = cell_range(cells);
@@ -380,7 +380,12 @@ impl Worley {
             return fill_pointwise::<Self, B, D>(self, span, out);
         }
         let along = self.columns_along::<B>(&xs[lo..hi]);
-        let mut plan = ChunkPlan { first: usize::MAX, reach: core::mem::take(reach), one_cell: false };
+        let mut plan = ChunkPlan {
+            first: usize::MAX,
+            reach: core::mem::take(reach),
+            cells: core::mem::take(chunk_cells),
+            one_cell: false,
+        };
         redo.clear();
         // The feature points of cells min_cell − 1 ..= max_cell + 1 (column
         // c is cell min_cell − 1 + c) in each row of cells around the grid
@@ -392,7 +397,9 @@ impl Worley {
         // Column-major copies for chunks in one cell (columns as in
         // `features`, the last two only read).
         let mut plane_table = Columns::new(ncell + 2, Interleaved::<D>::PLANE);
-        let mut row_table = Columns::new(ncell + 2, Interleaved::<D>::ROW.max(1));
+        // A chunk of columns more than read: room for the 2D rows' lanes.
+        let mut row_table = Columns::new(ncell + 2 + w, Interleaved::<D>::ROW.max(1));
+        let mut row_leads = Columns::new(ncell + 2 + w, Interleaved::<D>::ROW.max(1));
         let mut tables_plane = None;
 
         for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
@@ -458,9 +465,25 @@ impl Worley {
             if plan.one_cell {
                 if tables_plane != plane {
                     Interleaved::<D>::gather_plane(&mut plane_table, &features);
+                    if D == 2 {
+                        Interleaved::<D>::gather_row_leads(&mut row_leads, &features, ncell + 2);
+                    }
                     tables_plane = plane;
                 }
-                Interleaved::<D>::gather_row(&mut row_table, &features);
+                if D == 2 {
+                    // The row table from its leads, lanes at a time: in 2D
+                    // every entry's term is along axis 1. (Gathered from
+                    // `features`, it took a fifteenth of 2D F1's time over
+                    // 2048² on AVX-512, perf.)
+                    let mut i = 0;
+                    while i < (ncell + 2) * Interleaved::<D>::ROW {
+                        let d = B::from_slice(row_leads.field(0, i)) - row_frac[1];
+                        row_table.store(0, i, term(self.metric, d));
+                        i += w;
+                    }
+                } else {
+                    Interleaved::<D>::gather_row(&mut row_table, &features, ncell + 2);
+                }
             }
             let row = RowFeatures {
                 p,
@@ -470,6 +493,7 @@ impl Worley {
                 ring2: self.ring_bound(2, edge),
                 along: &along,
                 plan: &plan.reach,
+                chunk_cells: &plan.cells,
                 features: &features,
                 plane_table: &plane_table,
                 row_table: &row_table,
@@ -500,8 +524,9 @@ impl Worley {
         features.recycle();
         plane_table.recycle();
         row_table.recycle();
+        row_leads.recycle();
         along.recycle();
-        *reach = plan.reach;
+        (*reach, *chunk_cells) = (plan.reach, plan.cells);
         KEPT_VECTORS.keep(kept);
     }
 
@@ -549,6 +574,8 @@ impl Worley {
     {
         let w = B::WIDTH;
         let n = out.len();
+        // Room for every chunk to be redone (see `run`).
+        redo.reserve(n / w + 1);
         let mut k = 0;
         for &(reach, chunks) in row.plan {
             if k >= n {
@@ -557,10 +584,11 @@ impl Worley {
             let end = n.min(k + chunks * w);
             let run = &mut out[k..end];
             match reach {
-                Reach::OneCell(cell) => {
+                Reach::OneCell => {
                     let near = OneCell::<D> {
-                        plane: &row.plane_table.field(cell, 0)[..3 * Interleaved::<D>::PLANE],
-                        row: &row.row_table.field(cell, 0)[..3 * Interleaved::<D>::ROW],
+                        plane_table: row.plane_table,
+                        row_table: row.row_table,
+                        chunk_cells: row.chunk_cells,
                     };
                     self.run::<B, D>(row, i0 + k, &near, run, redo, k)
                 }
@@ -614,9 +642,14 @@ impl Worley {
             // in it (rounding is), so its bound is the smaller bound.
             let edge = columns.load::<B>(COLUMN_EDGE, k).min(row.edge);
             let ring2 = columns.load::<B>(COLUMN_RING2, k).min(row.ring2);
-            match self.chunk_k::<B, D>(frac0, edge, ring2, &near.columns(row.xs, i + k, w), near) {
+            let cells = near.cells(row.xs, i + k, (from + k) / w);
+            match self.chunk_k::<B, D, _>(frac0, edge, ring2, &cells, near) {
                 Some(v) => v.store(out),
-                None => redo.push(from + k),
+                // Within the room `row_points` made: no call to grow the
+                // vector in the loop, around which the loop's values
+                // would have to wait on the stack.
+                None if redo.len() < redo.capacity() => redo.push(from + k),
+                None => unreachable!("room for every chunk"),
             }
         }
         if whole < out.len() {
@@ -643,20 +676,20 @@ impl Worley {
     /// [`Worley::chunk`] keeping as many distances as the output needs,
     /// and the ids only where it reads them.
     #[inline(always)]
-    fn chunk_k<B: BatchLanes, const D: usize>(
+    fn chunk_k<B: BatchLanes, const D: usize, N: Near<B, D>>(
         &self,
         frac0: B,
         edge: B,
         ring2: B,
-        columns: &[B::Int; 3],
-        near: &impl Near<B, D>,
+        cells: &N::Cells,
+        near: &N,
     ) -> Option<B> {
         // k a constant where it is 1 (the common case): the nearest then
         // lives in a register.
         match (self.output.needs(), self.output == CellOutput::CellValue) {
-            (1, false) => self.chunk::<B, D, false>(frac0, edge, ring2, columns, near, 1),
-            (1, true) => self.chunk::<B, D, true>(frac0, edge, ring2, columns, near, 1),
-            (k, _) => self.chunk::<B, D, false>(frac0, edge, ring2, columns, near, k),
+            (1, false) => self.chunk::<B, D, _, false>(frac0, edge, ring2, cells, near, 1),
+            (1, true) => self.chunk::<B, D, _, true>(frac0, edge, ring2, cells, near, 1),
+            (k, _) => self.chunk::<B, D, _, false>(frac0, edge, ring2, cells, near, k),
         }
     }
 
@@ -665,9 +698,9 @@ impl Worley {
     /// `None` where some lane needs ring 2. The lanes are at `frac0` in
     /// their cells along axis 0 and `edge` from their cells' nearest faces
     /// (as `split` gives them; `ring2` is `ring_bound(2, edge)`), and
-    /// `columns` are the window columns of the cells −1, 0 and +1 from
-    /// theirs. `k` is the number of distances kept; `IDS` whether the
-    /// cells' ids are (positions never are).
+    /// find their cells in `near` through `cells`. `k` is the number of
+    /// distances kept; `IDS` whether the cells' ids are (positions never
+    /// are).
     ///
     /// `search` stops after ring 0 where that ring's cell is nearer than
     /// ring 1's bound; this does not ask, since ring 1 then changes
@@ -677,13 +710,13 @@ impl Worley {
     /// Minkowski keys go through `powf`, which is not known to be
     /// monotone, so they still ask.
     #[inline(always)]
-    fn chunk<B: BatchLanes, const D: usize, const IDS: bool>(
+    fn chunk<B: BatchLanes, const D: usize, N: Near<B, D>, const IDS: bool>(
         &self,
         frac0: B,
         edge: B,
         ring2: B,
-        columns: &[B::Int; 3],
-        near: &impl Near<B, D>,
+        cells: &N::Cells,
+        near: &N,
         k: usize,
     ) -> Option<B> {
         let planes = 3usize.pow(D as u32 - 1);
@@ -691,14 +724,14 @@ impl Worley {
         let nowhere = [B::cst(0.0); D];
         let mut found = Found::new();
         // Ring 0: the middle of the centre row of three.
-        let mid = self.row_of_three::<B, D, IDS>(frac0, columns, centre, near);
+        let mid = self.row_of_three::<B, D, N, IDS>(frac0, cells, centre, near);
         found.insert(mid.keys[1], mid.ids[1], nowhere, k);
         if matches!(self.metric, Metric::Minkowski(_)) && !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
             return Some(self.output(&found));
         }
         // Ring 1: every row of three, the centre row's middle left out.
         for j in 0..planes {
-            let row = if j == centre { mid } else { self.row_of_three::<B, D, IDS>(frac0, columns, j, near) };
+            let row = if j == centre { mid } else { self.row_of_three::<B, D, N, IDS>(frac0, cells, j, near) };
             let ring1 = |c: usize| j != centre || c != 1;
             if k == 1 {
                 // The row's nearest first (ties to the earlier, as
@@ -727,23 +760,23 @@ impl Worley {
     /// axes 1.., as in `search`'s ring 1, whose order `j`-major, axis 0
     /// minor, this keeps), for lanes at `frac0` in their cells along axis 0.
     #[inline(always)]
-    fn row_of_three<B: BatchLanes, const D: usize, const IDS: bool>(
+    fn row_of_three<B: BatchLanes, const D: usize, N: Near<B, D>, const IDS: bool>(
         &self,
         frac0: B,
-        columns: &[B::Int; 3],
+        cells: &N::Cells,
         j: usize,
-        near: &impl Near<B, D>,
+        near: &N,
     ) -> Three<B> {
         let mut d0 = [B::splat(0.0); 3];
         let mut rest = [[B::splat(0.0); D]; 3];
         let mut ids = [B::Int::splat(0); 3];
         for c in 0..3 {
-            d0[c] = near.lead(j, c, columns[c]) - frac0;
+            d0[c] = near.lead(j, c, cells) - frac0;
             for a in 1..D {
-                rest[c][a] = near.term(j, a, c, columns[c]);
+                rest[c][a] = near.term(j, a, c, cells);
             }
             if IDS {
-                ids[c] = near.id(j, c, columns[c]);
+                ids[c] = near.id(j, c, cells);
             }
         }
         Three { keys: self.keys(d0, &rest), ids }
@@ -795,6 +828,7 @@ struct RowFeatures<'a, B: BatchLanes, const D: usize> {
     lo: usize,
     along: &'a Columns,
     plan: &'a [(Reach, usize)],
+    chunk_cells: &'a [usize],
     features: &'a Columns,
     plane_table: &'a Columns,
     row_table: &'a Columns,
@@ -810,8 +844,11 @@ const COLUMN_RING2: usize = 2;
 /// chunk's first.
 #[derive(Clone, Copy, PartialEq)]
 enum Reach {
-    /// Every lane in one cell, `min_cell` + this.
-    OneCell(usize),
+    /// Every lane of a chunk in one cell, the chunk's in
+    /// [`ChunkPlan::cells`]. One run for consecutive chunks in any cells:
+    /// a run a cell long cost as much as its two chunks (AVX-512, spacing
+    /// 1/32) to set up.
+    OneCell,
     /// Cells `origin + 1 ..`, within two registers of columns from `first`.
     TwoRegisters { first: usize, origin: i32 },
     /// Too many cells: the point path.
@@ -824,18 +861,21 @@ enum Reach {
 struct ChunkPlan {
     first: usize,
     reach: Vec<(Reach, usize)>,
+    /// Each chunk's first cell, from `min_cell`.
+    cells: Vec<usize>,
     /// Whether some chunk is [`Reach::OneCell`].
     one_cell: bool,
 }
 
 /// The grid fill's vectors, kept by each thread between calls
 /// ([`crate::scratch::KeptVectors`]): the span's column cells, the chunks
-/// left to the point path, and the chunk plan's runs.
+/// left to the point path, and the chunk plan's runs and chunk cells.
 #[derive(Default)]
 struct GridVectors {
     cells: Vec<i32>,
     redo: Vec<usize>,
     reach: Vec<(Reach, usize)>,
+    chunk_cells: Vec<usize>,
 }
 
 crate::scratch::per_thread!(KEPT_VECTORS: GridVectors);
@@ -843,7 +883,7 @@ crate::scratch::per_thread!(KEPT_VECTORS: GridVectors);
 impl crate::scratch::KeptVectors for GridVectors {
     fn held_bytes(&self) -> usize {
         use crate::scratch::bytes_of;
-        bytes_of(&self.cells) + bytes_of(&self.redo) + bytes_of(&self.reach)
+        bytes_of(&self.cells) + bytes_of(&self.redo) + bytes_of(&self.reach) + bytes_of(&self.chunk_cells)
     }
 }
 
@@ -857,13 +897,15 @@ impl ChunkPlan {
         let from = first - lo;
         let reach = &mut self.reach;
         reach.clear();
+        self.cells.clear();
         let mut one_cell = false;
         for chunk in cells[from..].chunks(w) {
             let (a, b) = cell_range(chunk);
             let first = (a - min_cell) as usize;
+            self.cells.push(first);
             let this = if a == b {
                 one_cell = true;
-                Reach::OneCell(first)
+                Reach::OneCell
             } else if ((b - a) as usize) + 3 <= 2 * w {
                 Reach::TwoRegisters { first, origin: a - 1 }
             } else {
@@ -936,19 +978,22 @@ fn digit(j: usize, d: usize) -> i32 {
     ((j / 3usize.pow(d as u32)) % 3) as i32 - 1
 }
 
-/// Where a chunk's lanes find the feature points of the cells around
-/// them: in the row of cells `j` (base 3 over axes 1..), the cell `c − 1`
-/// along axis 0 from each lane's, whose column in the window is `column`.
+/// Where a run's chunks find the feature points of the cells around
+/// their lanes: in the row of cells `j` (base 3 over axes 1..), the cell
+/// `c − 1` along axis 0 from each lane's, which a chunk finds through its
+/// `Cells`.
 trait Near<B: BatchLanes, const D: usize> {
-    /// The window columns of the cells −1, 0 and +1 from the cells of
-    /// `count` grid columns from `i` (positions `xs`).
-    fn columns(&self, xs: &[f32], i: usize, count: usize) -> [B::Int; 3];
+    /// Where one chunk finds its cells.
+    type Cells;
+    /// The `Cells` of the row's chunk `chunk` (from its piece's start),
+    /// whose whole chunk of grid columns starts at `i` (positions `xs`).
+    fn cells(&self, xs: &[f32], i: usize, chunk: usize) -> Self::Cells;
     /// [`Features::lead`].
-    fn lead(&self, j: usize, c: usize, column: B::Int) -> B;
+    fn lead(&self, j: usize, c: usize, cells: &Self::Cells) -> B;
     /// [`Features::term`] along axis `a` ≥ 1.
-    fn term(&self, j: usize, a: usize, c: usize, column: B::Int) -> B;
+    fn term(&self, j: usize, a: usize, c: usize, cells: &Self::Cells) -> B;
     /// [`Features::id`].
-    fn id(&self, j: usize, c: usize, column: B::Int) -> B::Int;
+    fn id(&self, j: usize, c: usize, cells: &Self::Cells) -> B::Int;
 }
 
 /// A chunk's window on a row's feature points: columns `first..first +
@@ -969,51 +1014,66 @@ impl Window<'_> {
 }
 
 impl<B: BatchLanes, const D: usize> Near<B, D> for Window<'_> {
+    /// The window columns of the cells −1, 0 and +1 from the lanes'.
+    type Cells = [B::Int; 3];
     #[inline(always)]
-    fn columns(&self, xs: &[f32], i: usize, count: usize) -> [B::Int; 3] {
-        let x = row_lanes::<B>(xs, i, count);
+    fn cells(&self, xs: &[f32], i: usize, _chunk: usize) -> [B::Int; 3] {
+        let x = row_lanes::<B>(xs, i, B::WIDTH);
         let column = x.floor().to_int_wrapping().sub(B::Int::splat(self.origin));
         [column.add_c(-1), column, column.add_c(1)]
     }
     #[inline(always)]
-    fn lead(&self, j: usize, c: usize, column: B::Int) -> B {
-        self.lanes(Features::<D>::lead(j, c), column)
+    fn lead(&self, j: usize, c: usize, columns: &[B::Int; 3]) -> B {
+        self.lanes(Features::<D>::lead(j, c), columns[c])
     }
     #[inline(always)]
-    fn term(&self, j: usize, a: usize, _c: usize, column: B::Int) -> B {
-        self.lanes(Features::<D>::term(j, a), column)
+    fn term(&self, j: usize, a: usize, c: usize, columns: &[B::Int; 3]) -> B {
+        self.lanes(Features::<D>::term(j, a), columns[c])
     }
     #[inline(always)]
-    fn id(&self, j: usize, _c: usize, column: B::Int) -> B::Int {
-        self.lanes::<B>(Features::<D>::id(j), column).to_bits()
+    fn id(&self, j: usize, c: usize, columns: &[B::Int; 3]) -> B::Int {
+        self.lanes::<B>(Features::<D>::id(j), columns[c]).to_bits()
     }
 }
 
-/// A chunk whose lanes lie in one cell: every lane reads the same
-/// feature points, from the [`Interleaved`] tables' three columns from the
-/// cell before the lanes' (each slice exactly three columns long, so the
-/// reads, at fixed offsets, need no checks).
+/// Chunks whose lanes lie in one cell each, `chunk_cells` from `min_cell`:
+/// every lane of a chunk reads the same feature points, from the
+/// [`Interleaved`] tables.
 struct OneCell<'a, const D: usize> {
+    plane_table: &'a Columns,
+    row_table: &'a Columns,
+    chunk_cells: &'a [usize],
+}
+
+/// A chunk's three columns of a [`OneCell`]'s tables from the cell before
+/// its lanes': each slice exactly three columns long, so the reads, at
+/// fixed offsets, need no checks.
+struct TableColumns<'a> {
     plane: &'a [f32],
     row: &'a [f32],
 }
 
-impl<B: BatchLanes, const D: usize> Near<B, D> for OneCell<'_, D> {
+impl<'a, B: BatchLanes, const D: usize> Near<B, D> for OneCell<'a, D> {
+    type Cells = TableColumns<'a>;
     #[inline(always)]
-    fn columns(&self, _xs: &[f32], _i: usize, _count: usize) -> [B::Int; 3] {
-        [B::Int::splat(0); 3]
+    fn cells(&self, _xs: &[f32], _i: usize, chunk: usize) -> TableColumns<'a> {
+        let cell = self.chunk_cells[chunk];
+        TableColumns {
+            plane: &self.plane_table.field(cell, 0)[..3 * Interleaved::<D>::PLANE],
+            row: &self.row_table.field(cell, 0)[..3 * Interleaved::<D>::ROW],
+        }
     }
     #[inline(always)]
-    fn lead(&self, j: usize, c: usize, _column: B::Int) -> B {
-        B::splat(self.plane[Interleaved::<D>::lead(j, c)])
+    fn lead(&self, j: usize, c: usize, cells: &TableColumns<'a>) -> B {
+        B::splat(cells.plane[Interleaved::<D>::lead(j, c)])
     }
     #[inline(always)]
-    fn term(&self, j: usize, a: usize, c: usize, _column: B::Int) -> B {
-        B::splat(self.row[Interleaved::<D>::term(j, a, c)])
+    fn term(&self, j: usize, a: usize, c: usize, cells: &TableColumns<'a>) -> B {
+        B::splat(cells.row[Interleaved::<D>::term(j, a, c)])
     }
     #[inline(always)]
-    fn id(&self, j: usize, c: usize, _column: B::Int) -> B::Int {
-        B::splat(self.plane[Interleaved::<D>::id(j, c)]).to_bits()
+    fn id(&self, j: usize, c: usize, cells: &TableColumns<'a>) -> B::Int {
+        B::splat(cells.plane[Interleaved::<D>::id(j, c)]).to_bits()
     }
 }
 
@@ -1064,10 +1124,9 @@ impl<const D: usize> Interleaved<D> {
         }
     }
 
-    /// The row's table from its features.
+    /// The row's table from its features, over `columns` columns.
     #[inline(always)]
-    fn gather_row(table: &mut Columns, features: &Columns) {
-        let columns = table.fields;
+    fn gather_row(table: &mut Columns, features: &Columns, columns: usize) {
         // Field by field: each feature field's columns sliced (and checked)
         // once, then stored down the table. Per column and field, slicing
         // cost more than the copy (28 instructions a column in 2D).
@@ -1077,6 +1136,23 @@ impl<const D: usize> Interleaved<D> {
                 let from = &features.field(Features::<D>::term(j, a), 0)[..columns];
                 for (values, &v) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
                     values[at] = v;
+                }
+            }
+        }
+    }
+
+    /// Over `columns` columns, laid out as the row's table: each term's
+    /// [`Worley::lead`] along its axis, per plane. A row's terms are then
+    /// `term(lead − frac)` of it entry by entry, as [`Worley::reach`]
+    /// forms them.
+    #[inline(always)]
+    fn gather_row_leads(table: &mut Columns, features: &Columns, columns: usize) {
+        for a in 1..D {
+            for j in 0..Self::ROWS {
+                let at = (a - 1) * Self::ROWS + j;
+                let from = &features.field(Features::<D>::jitter(j, a), 0)[..columns];
+                for (values, &t) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
+                    values[at] = Worley::lead::<f32>(digit(j, a - 1), t);
                 }
             }
         }
