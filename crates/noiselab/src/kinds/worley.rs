@@ -1127,18 +1127,7 @@ impl<const D: usize> Interleaved<D> {
     /// The row's table from its features, over `columns` columns.
     #[inline(always)]
     fn gather_row(table: &mut Columns, features: &Columns, columns: usize) {
-        // Field by field: each feature field's columns sliced (and checked)
-        // once, then stored down the table. Per column and field, slicing
-        // cost more than the copy (28 instructions a column in 2D).
-        for a in 1..D {
-            for j in 0..Self::ROWS {
-                let at = (a - 1) * Self::ROWS + j;
-                let from = &features.field(Features::<D>::term(j, a), 0)[..columns];
-                for (values, &v) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
-                    values[at] = v;
-                }
-            }
-        }
+        Self::gather_row_layout(table, features, columns, Features::<D>::term, |_, _, v| v);
     }
 
     /// Over `columns` columns, laid out as the row's table: each term's
@@ -1147,12 +1136,31 @@ impl<const D: usize> Interleaved<D> {
     /// forms them.
     #[inline(always)]
     fn gather_row_leads(table: &mut Columns, features: &Columns, columns: usize) {
+        Self::gather_row_layout(table, features, columns, Features::<D>::jitter, |j, a, t| {
+            Worley::lead::<f32>(digit(j, a - 1), t)
+        });
+    }
+
+    /// Into `table`, laid out as the row's table over `columns` columns:
+    /// `value(j, a, v)` of each value `v` of the feature field `field(j, a)`
+    /// (row of cells `j`, axis `a` ≥ 1).
+    #[inline(always)]
+    fn gather_row_layout(
+        table: &mut Columns,
+        features: &Columns,
+        columns: usize,
+        field: fn(usize, usize) -> usize,
+        value: impl Fn(usize, usize, f32) -> f32,
+    ) {
+        // Field by field: each feature field's columns sliced (and checked)
+        // once, then stored down the table. Per column and field, slicing
+        // cost more than the copy (28 instructions a column in 2D).
         for a in 1..D {
             for j in 0..Self::ROWS {
                 let at = (a - 1) * Self::ROWS + j;
-                let from = &features.field(Features::<D>::jitter(j, a), 0)[..columns];
-                for (values, &t) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
-                    values[at] = Worley::lead::<f32>(digit(j, a - 1), t);
+                let from = &features.field(field(j, a), 0)[..columns];
+                for (values, &v) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
+                    values[at] = value(j, a, v);
                 }
             }
         }
