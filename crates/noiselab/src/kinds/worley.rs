@@ -845,9 +845,9 @@ const COLUMN_RING2: usize = 2;
 #[derive(Clone, Copy, PartialEq)]
 enum Reach {
     /// Every lane of a chunk in one cell, the chunk's in
-    /// [`ChunkPlan::cells`]. One run for consecutive chunks in any cells:
-    /// a run a cell long cost as much as its two chunks (AVX-512, spacing
-    /// 1/32) to set up.
+    /// [`ChunkPlan::cells`]. Consecutive such chunks are one run, in any
+    /// cells: set up once, not per cell of two chunks (AVX-512, spacing
+    /// 1/32).
     OneCell,
     /// Cells `origin + 1 ..`, within two registers of columns from `first`.
     TwoRegisters { first: usize, origin: i32 },
