@@ -397,9 +397,12 @@ impl Worley {
         // Column-major copies for chunks in one cell (columns as in
         // `features`, the last two only read).
         let mut plane_table = Columns::new(ncell + 2, Interleaved::<D>::PLANE);
-        // A chunk of columns more than read: room for the 2D rows' lanes.
-        let mut row_table = Columns::new(ncell + 2 + w, Interleaved::<D>::ROW.max(1));
-        let mut row_leads = Columns::new(ncell + 2 + w, Interleaved::<D>::ROW.max(1));
+        // In 2D the rows' terms are formed lanes at a time from leads laid
+        // out as the row table: both then have a chunk of columns more
+        // than read. Elsewhere the row table is gathered and has no leads.
+        let (row_columns, lead_columns) = if D == 2 { (ncell + 2 + w, ncell + 2 + w) } else { (ncell + 2, 0) };
+        let mut row_table = Columns::new(row_columns, Interleaved::<D>::ROW.max(1));
+        let mut row_leads = Columns::new(lead_columns, Interleaved::<D>::ROW.max(1));
         let mut tables_plane = None;
 
         for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
