@@ -644,7 +644,7 @@ impl Worley {
             // (`min` is exact and commutes), and `ring_bound` is monotone
             // in it (rounding is), so its bound is the smaller bound.
             let edge = columns.load::<B>(COLUMN_EDGE, k).min(row.edge);
-            let ring2 = columns.load::<B>(COLUMN_RING2, k).min(row.ring2);
+            let ring2 = columns.load::<B>(COLUMN_RING2, k).min_nonnegative(row.ring2);
             let cells = near.cells(row.xs, i + k, (from + k) / w);
             match self.chunk_k::<B, D, _>(frac0, edge, ring2, &cells, near) {
                 Some(v) => v.store(out),
@@ -725,10 +725,10 @@ impl Worley {
         let planes = 3usize.pow(D as u32 - 1);
         let centre = planes / 2;
         let nowhere = [B::cst(0.0); D];
-        let mut found = Found::new();
-        // Ring 0: the middle of the centre row of three.
+        // Ring 0: the middle of the centre row of three. (Keys here are
+        // finite and non-negative: the grid's rows and columns are finite.)
         let mid = self.row_of_three::<B, D, N, IDS>(frac0, cells, centre, near);
-        found.insert(mid.keys[1], mid.ids[1], nowhere, k);
+        let mut found = Found::first(mid.keys[1], mid.ids[1]);
         if matches!(self.metric, Metric::Minkowski(_)) && !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
             return Some(self.output(&found));
         }
@@ -742,10 +742,10 @@ impl Worley {
                 let (mut key, mut id) = (row.keys[0], row.ids[0]);
                 for c in (1..3).filter(|&c| ring1(c)) {
                     let closer = row.keys[c].lt(key);
-                    key = key.min(row.keys[c]);
+                    key = key.min_nonnegative(row.keys[c]);
                     id = B::Int::select(closer, row.ids[c], id);
                 }
-                found.insert(key, id, nowhere, k);
+                found.insert_nearest(key, id);
             } else {
                 for c in (0..3).filter(|&c| ring1(c)) {
                     found.insert(row.keys[c], row.ids[c], nowhere, k);
@@ -774,7 +774,10 @@ impl Worley {
         let mut rest = [[B::splat(0.0); D]; 3];
         let mut ids = [B::Int::splat(0); 3];
         for c in 0..3 {
-            d0[c] = near.lead(j, c, cells) - frac0;
+            // `reach` negated, which is exact (rounding is symmetric), and
+            // every metric's term of it is the same: so the lead is the
+            // subtrahend, which x86 reads straight from memory, broadcast.
+            d0[c] = frac0 - near.lead(j, c, cells);
             for a in 1..D {
                 rest[c][a] = near.term(j, a, c, cells);
             }
@@ -1185,6 +1188,27 @@ impl<L: Lanes, const D: usize> Found<L, D> {
     fn new() -> Self {
         let far = L::cst(f64::INFINITY);
         Found { distance: [far; 4], id_lanes: [L::Int::splat(0); 2], point: [[L::cst(0.0); D]; 2], id: [0; 2] }
+    }
+
+    /// [`Found::new`] after inserting a first, finite key `dist` (no
+    /// position): `∞.min(dist)` is `dist`, and the slots after it keep ∞
+    /// and id 0 (`dist.max(∞)` is ∞).
+    #[inline(always)]
+    fn first(dist: L, id: L::Int) -> Self {
+        let mut found = Self::new();
+        found.distance[0] = dist;
+        found.id_lanes[0] = id;
+        found
+    }
+
+    /// [`Found::insert`] with `k` = 1 and no position, of a key that, as
+    /// every key so far, is neither NaN nor negative nor −0
+    /// ([`Lanes::min_nonnegative`]).
+    #[inline(always)]
+    fn insert_nearest(&mut self, dist: L, id: L::Int) {
+        let closer = dist.lt(self.distance[0]);
+        self.distance[0] = self.distance[0].min_nonnegative(dist);
+        self.id_lanes[0] = L::Int::select(closer, id, self.id_lanes[0]);
     }
 
     /// Insertion into the sorted list, branch-free: each slot keeps the
