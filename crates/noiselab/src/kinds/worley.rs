@@ -473,20 +473,7 @@ impl Worley {
                     }
                     tables_plane = plane;
                 }
-                if D == 2 {
-                    // The row table from its leads, lanes at a time: in 2D
-                    // every entry's term is along axis 1. (Gathered from
-                    // `features`, it took a fifteenth of 2D F1's time over
-                    // 2048² on AVX-512, perf.)
-                    let mut i = 0;
-                    while i < (ncell + 2) * Interleaved::<D>::ROW {
-                        let d = B::from_slice(row_leads.field(0, i)) - row_frac[1];
-                        row_table.store(0, i, term(self.metric, d));
-                        i += w;
-                    }
-                } else {
-                    Interleaved::<D>::gather_row(&mut row_table, &features, ncell + 2);
-                }
+                Interleaved::<D>::fill_row(&mut row_table, (&features, &row_leads), self.metric, row_frac, ncell + 2);
             }
             let row = RowFeatures {
                 p,
@@ -1130,10 +1117,23 @@ impl<const D: usize> Interleaved<D> {
         }
     }
 
-    /// The row's table from its features, over `columns` columns.
+    /// The row's table over `columns` columns, for a row at `frac` in its
+    /// cells along axes 1... In 2D from the plane's `leads`
+    /// ([`Interleaved::gather_row_leads`]) lanes at a time, every entry's
+    /// term being along axis 1. (Gathered from `features` as elsewhere, it
+    /// took a fifteenth of 2D F1's time over 2048² on AVX-512, perf.)
     #[inline(always)]
-    fn gather_row(table: &mut Columns, features: &Columns, columns: usize) {
-        Self::gather_row_layout(table, features, columns, Features::<D>::term, |_, _, v| v);
+    fn fill_row<B: BatchLanes>(table: &mut Columns, (features, leads): (&Columns, &Columns), metric: Metric, frac: [B; D], columns: usize) {
+        if D == 2 {
+            let mut i = 0;
+            while i < columns * Self::ROW {
+                let d = B::from_slice(leads.field(0, i)) - frac[1];
+                table.store(0, i, term(metric, d));
+                i += B::WIDTH;
+            }
+        } else {
+            Self::gather_row_layout(table, features, columns, Features::<D>::term, |_, _, v| v);
+        }
     }
 
     /// Over `columns` columns, laid out as the row's table: each term's
