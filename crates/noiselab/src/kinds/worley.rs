@@ -674,11 +674,12 @@ impl Worley {
         cells: &N::Cells,
         near: &N,
     ) -> Option<B> {
-        // k a constant where it is 1 (the common case): the nearest then
-        // lives in a register.
+        // k a constant where it is 1 (the common case: the nearest then
+        // lives in a register) or 2 (F2 and the outputs of F1 and F2).
         match (self.output.needs(), self.output == CellOutput::CellValue) {
             (1, false) => self.chunk::<B, D, _, false>(frac0, edge, ring2, cells, near, 1),
             (1, true) => self.chunk::<B, D, _, true>(frac0, edge, ring2, cells, near, 1),
+            (2, _) => self.chunk::<B, D, _, false>(frac0, edge, ring2, cells, near, 2),
             (k, _) => self.chunk::<B, D, _, false>(frac0, edge, ring2, cells, near, k),
         }
     }
@@ -711,11 +712,10 @@ impl Worley {
     ) -> Option<B> {
         let planes = 3usize.pow(D as u32 - 1);
         let centre = planes / 2;
-        let nowhere = [B::cst(0.0); D];
         // Ring 0: the middle of the centre row of three. (Keys here are
         // finite and non-negative: the grid's rows and columns are finite.)
         let mid = self.row_of_three::<B, D, N, IDS>(frac0, cells, centre, near);
-        let mut found = Found::first(mid.keys[1], mid.ids[1]);
+        let mut found = Found::<B, D>::first(mid.keys[1], mid.ids[1]);
         if matches!(self.metric, Metric::Minkowski(_)) && !B::any(self.ring_bound(1, edge).lt(found.distance[k - 1])) {
             return Some(self.output(&found));
         }
@@ -732,10 +732,10 @@ impl Worley {
                     key = key.min_nonnegative(row.keys[c]);
                     id = B::Int::select(closer, row.ids[c], id);
                 }
-                found.insert_nearest(key, id);
+                found.insert_nonnegative(key, id, k);
             } else {
                 for c in (0..3).filter(|&c| ring1(c)) {
-                    found.insert(row.keys[c], row.ids[c], nowhere, k);
+                    found.insert_nonnegative(row.keys[c], row.ids[c], k);
                 }
             }
         }
@@ -1201,28 +1201,35 @@ impl<L: Lanes, const D: usize> Found<L, D> {
         found
     }
 
-    /// [`Found::insert`] with `k` = 1 and no position, of a key that, as
-    /// every key so far, is neither NaN nor negative nor −0
-    /// ([`Lanes::min_nonnegative`]).
-    #[inline(always)]
-    fn insert_nearest(&mut self, dist: L, id: L::Int) {
-        let closer = dist.lt(self.distance[0]);
-        self.distance[0] = self.distance[0].min_nonnegative(dist);
-        self.id_lanes[0] = L::Int::select(closer, id, self.id_lanes[0]);
-    }
-
     /// Insertion into the sorted list, branch-free: each slot keeps the
     /// smaller of itself and the carried candidate and passes the larger on.
     /// Ties keep the earlier point, so results do not depend on lane width.
     #[inline(always)]
-    fn insert(&mut self, mut dist: L, mut id: L::Int, mut point: [L; D], k: usize) {
+    fn insert(&mut self, dist: L, id: L::Int, point: [L; D], k: usize) {
+        self.insert_with::<false>(dist, id, point, k)
+    }
+
+    /// [`Found::insert`] with no position, of a key that, as every key so
+    /// far, is neither NaN nor negative nor −0: minima and maxima as
+    /// [`Lanes::min_nonnegative`] and [`Lanes::max_nonnegative`].
+    #[inline(always)]
+    fn insert_nonnegative(&mut self, dist: L, id: L::Int, k: usize) {
+        self.insert_with::<true>(dist, id, [L::cst(0.0); D], k)
+    }
+
+    #[inline(always)]
+    fn insert_with<const NONNEGATIVE: bool>(&mut self, mut dist: L, mut id: L::Int, mut point: [L; D], k: usize) {
         for slot in 0..k {
             let closer = dist.lt(self.distance[slot]);
             // `min` and `max` are these selects by definition (one
             // instruction each instead of a compare and two blends where
             // the ids and positions are not kept).
-            let kept = self.distance[slot].min(dist);
-            dist = dist.max(self.distance[slot]);
+            let (kept, passed) = if NONNEGATIVE {
+                (self.distance[slot].min_nonnegative(dist), dist.max_nonnegative(self.distance[slot]))
+            } else {
+                (self.distance[slot].min(dist), dist.max(self.distance[slot]))
+            };
+            dist = passed;
             self.distance[slot] = kept;
             if slot < 2 {
                 let kept_id = L::Int::select(closer, id, self.id_lanes[slot]);

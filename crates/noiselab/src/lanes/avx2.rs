@@ -159,6 +159,10 @@ impl Lanes for X8 {
         X8(unsafe { _mm256_castsi256_ps(_mm256_min_epi32(_mm256_castps_si256(self.0), _mm256_castps_si256(o.0))) })
     }
     #[inline(always)]
+    fn max_nonnegative(self, o: Self) -> Self {
+        X8(unsafe { _mm256_castsi256_ps(_mm256_max_epi32(_mm256_castps_si256(self.0), _mm256_castps_si256(o.0))) })
+    }
+    #[inline(always)]
     fn lt(self, o: Self) -> M8 {
         M8(unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0)) })
     }

@@ -157,6 +157,10 @@ impl Lanes for X16 {
         X16(unsafe { _mm512_castsi512_ps(_mm512_min_epi32(_mm512_castps_si512(self.0), _mm512_castps_si512(o.0))) })
     }
     #[inline(always)]
+    fn max_nonnegative(self, o: Self) -> Self {
+        X16(unsafe { _mm512_castsi512_ps(_mm512_max_epi32(_mm512_castps_si512(self.0), _mm512_castps_si512(o.0))) })
+    }
+    #[inline(always)]
     fn lt(self, o: Self) -> M16 {
         M16(unsafe { _mm512_cmp_ps_mask::<_CMP_LT_OQ>(self.0, o.0) })
     }

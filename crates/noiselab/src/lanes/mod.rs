@@ -103,6 +103,11 @@ pub trait Lanes:
     fn min_nonnegative(self, o: Self) -> Self {
         self.min(o)
     }
+    /// [`Lanes::max`] of such lanes, as [`Lanes::min_nonnegative`].
+    #[inline(always)]
+    fn max_nonnegative(self, o: Self) -> Self {
+        self.max(o)
+    }
 
     /// `self < o`.
     fn lt(self, o: Self) -> Self::Mask;
@@ -330,7 +335,8 @@ mod tests {
         v
     }
 
-    /// `min_nonnegative` gives `min`'s bits on every pair of windows.
+    /// `min_nonnegative` and `max_nonnegative` give `min`'s and `max`'s
+    /// bits on every pair of windows.
     #[inline(always)]
     fn check<L: Lanes<Elem = f32>>() {
         let v = nonnegative();
@@ -338,9 +344,10 @@ mod tests {
         for i in 0..v.len() - w {
             for j in 0..v.len() - w {
                 let (a, b) = (L::from_slice(&v[i..i + w]), L::from_slice(&v[j..j + w]));
-                let (want, got) = (a.min(b), a.min_nonnegative(b));
-                for k in 0..w {
-                    assert_eq!(got.lane(k).to_bits(), want.lane(k).to_bits(), "{} vs {}", v[i + k], v[j + k]);
+                for (want, got) in [(a.min(b), a.min_nonnegative(b)), (a.max(b), a.max_nonnegative(b))] {
+                    for k in 0..w {
+                        assert_eq!(got.lane(k).to_bits(), want.lane(k).to_bits(), "{} vs {}", v[i + k], v[j + k]);
+                    }
                 }
             }
         }
@@ -356,9 +363,10 @@ mod tests {
         check::<avx512::X16>();
     }
 
-    /// The integer minimum that x86 takes for it is the float minimum.
+    /// The integer minimum and maximum that x86 takes for them are the
+    /// float ones.
     #[test]
-    fn min_nonnegative_is_min() {
+    fn nonnegative_min_and_max_are_min_and_max() {
         check::<F32x16>();
         check::<f32>();
         if std::arch::is_x86_feature_detected!("avx2") {
