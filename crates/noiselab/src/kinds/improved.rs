@@ -9,7 +9,7 @@ use super::lattice::{self, Corner, Fields, Lattice};
 use super::{fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
 use crate::grid::Span;
 use crate::hash::Permutation;
-use crate::lanes::{BatchLanes, IntLanes, Lanes};
+use crate::lanes::{BatchLanes, IntLanes, Lanes, Table16};
 use crate::noise::{Noise, NoiseGradient};
 
 /// Which 3D gradient function to use.
@@ -222,8 +222,12 @@ const fn gradient_table(variant: ImprovedVariant) -> [[f32; 16]; 3] {
 }
 
 /// [`gradient_table`] for each variant.
-const GRADIENTS: [[[f32; 16]; 3]; 2] =
-    [gradient_table(ImprovedVariant::Current), gradient_table(ImprovedVariant::Original2002)];
+const GRADIENTS: [[Table16; 3]; 2] = [tables(gradient_table(ImprovedVariant::Current)), tables(gradient_table(ImprovedVariant::Original2002))];
+
+/// Each axis's coefficients as a lookup table.
+const fn tables([x, y, z]: [[f32; 16]; 3]) -> [Table16; 3] {
+    [Table16::new(x), Table16::new(y), Table16::new(z)]
+}
 
 /// Offset `a` times its coefficient `c`, or −0 (the additive identity)
 /// where the axis is not picked (`c` = 0): summing these over the axes in

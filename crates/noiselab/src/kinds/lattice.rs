@@ -258,9 +258,7 @@ pub(crate) fn sample<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, p: [L; D
     for c in 0..(1 << D) {
         let off = offsets(f, c);
         // Only corner 0's zero can reach the result (`eval_unsigned_zero`).
-        // One lane keeps `eval`: without the select the scalar f64 path
-        // measured 1.8x slower (25 → 45 ns a 3D point; cause not found).
-        v[c] = if c == 0 || L::WIDTH == 1 {
+        v[c] = if c == 0 {
             kind.eval(&kind.bind(corners[c], off), off[0])
         } else {
             kind.value_unsigned_zero(corners[c], off)

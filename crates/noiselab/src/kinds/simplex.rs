@@ -5,16 +5,16 @@
 use super::finite_or_nan;
 use crate::hash::Permutation;
 use crate::grid::{self, ChunkSampler, Span};
-use crate::lanes::{BatchLanes, IntLanes, Lanes, Table256};
+use crate::lanes::{BatchLanes, IntLanes, Lanes, Table16, Table256};
 use alloc::sync::Arc;
 use crate::noise::{Noise, NoiseGradient};
 
 /// Gustavson's `grad3`: the 12 edge midpoints of the cube, by column
 /// (padded to 16 entries for register-wide lookups).
-const GRAD3: [[f32; 16]; 3] = [
-    [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0],
+const GRAD3: [Table16; 3] = [
+    Table16::new([1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+    Table16::new([1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0]),
+    Table16::new([0.0, 0.0, 0.0, 0.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0]),
 ];
 
 /// Gustavson's `grad4`: the 32 permutations of (0, ±1, ±1, ±1), by column.

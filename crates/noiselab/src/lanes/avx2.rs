@@ -10,7 +10,7 @@
 //! that the batch drivers call after detecting those features (`grid.rs`):
 //! that is what makes the `unsafe` intrinsic calls below sound.
 
-use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table256, F32x8};
+use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table16, Table256, F32x8};
 use core::arch::x86_64::*;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -216,8 +216,9 @@ impl Lanes for X8 {
         X8(unsafe { _mm256_cvtepi32_ps(i.0) })
     }
     #[inline(always)]
-    fn lookup16(table: &[f32; 16], idx: I8) -> Self {
+    fn lookup16(table: &Table16, idx: I8) -> Self {
         // Two eight-entry permutes, bit 3 picks.
+        let table = table.single();
         unsafe {
             let lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.as_ptr()), idx.0);
             let hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table[8..].as_ptr()), idx.0);

@@ -11,7 +11,7 @@
 //! that the batch drivers call after detecting those features (`grid.rs`):
 //! that is what makes the `unsafe` intrinsic calls below sound.
 
-use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table256, F32x16};
+use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table16, Table256, F32x16};
 use core::arch::x86_64::*;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -213,8 +213,8 @@ impl Lanes for X16 {
         X16(unsafe { _mm512_cvtepi32_ps(i.0) })
     }
     #[inline(always)]
-    fn lookup16(table: &[f32; 16], idx: I16) -> Self {
-        X16(unsafe { _mm512_permutexvar_ps(idx.0, _mm512_loadu_ps(table.as_ptr())) })
+    fn lookup16(table: &Table16, idx: I16) -> Self {
+        X16(unsafe { _mm512_permutexvar_ps(idx.0, _mm512_loadu_ps(table.single().as_ptr())) })
     }
     #[inline(always)]
     fn lookup8(table: &[f32; 8], idx: I16) -> Self {

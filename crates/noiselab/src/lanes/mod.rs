@@ -143,9 +143,9 @@ pub trait Lanes:
     fn from_int(i: Self::Int) -> Self;
     /// Per lane: `table[idx]`. Indices must be in range (kernels mask them).
     fn gather(table: &[Self::Elem], idx: Self::Int) -> Self;
-    /// Per lane: `table[idx & 15]`, widened exactly to the element type
-    /// (one permute on AVX-512).
-    fn lookup16(table: &[f32; 16], idx: Self::Int) -> Self;
+    /// Per lane: `table[idx & 15]` in the element type (one permute on
+    /// AVX-512; one load, with no conversion, in one-lane `f64`).
+    fn lookup16(table: &Table16, idx: Self::Int) -> Self;
     /// Per lane: `table[idx & 7]`, widened exactly to the element type
     /// (one permute on AVX2 and AVX-512, where [`Lanes::lookup16`] takes
     /// two and a blend on AVX2).
@@ -259,6 +259,40 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
 #[repr(C, align(64))]
 pub struct Table256(pub [u8; 256]);
 
+/// A 16-entry float table for [`Lanes::lookup16`], held in `f32` and, widened
+/// exactly, in `f64`: one-lane `f64` reads its entry as it is (a conversion
+/// per entry was 24 of the 300 instructions of a scalar 3D point).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Table16 {
+    single: [f32; 16],
+    double: [f64; 16],
+}
+
+impl Table16 {
+    /// The table of `entries`.
+    pub const fn new(entries: [f32; 16]) -> Self {
+        let mut double = [0.0; 16];
+        let mut k = 0;
+        while k < 16 {
+            double[k] = entries[k] as f64;
+            k += 1;
+        }
+        Table16 { single: entries, double }
+    }
+
+    /// The entries in `f32`.
+    #[inline(always)]
+    pub fn single(&self) -> &[f32; 16] {
+        &self.single
+    }
+
+    /// The entries in `f64`.
+    #[inline(always)]
+    pub fn double(&self) -> &[f64; 16] {
+        &self.double
+    }
+}
+
 /// Linear interpolation `a + t·(b − a)`, the form every reference uses
 /// (Perlin 1985/2002, Gustavson). Not `a·(1−t) + b·t`, which rounds differently.
 #[inline(always)]
@@ -353,14 +387,62 @@ mod tests {
         }
     }
 
+    /// `lookup256x4` gives each lane `table[idx & 255]`, on indices of
+    /// every sign and size.
+    #[inline(always)]
+    fn check_lookup<B: BatchLanes>() {
+        let table = Table256(core::array::from_fn(|i| (i as u8).wrapping_mul(167).wrapping_add(13)));
+        let mut state = 0x2545_F491u32;
+        let mut idx = vec![0i32; 64 * B::WIDTH];
+        for (k, i) in idx.iter_mut().enumerate() {
+            state = state.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            *i = if k % 5 == 0 { (state % 256) as i32 } else { state as i32 };
+        }
+        for four in idx.chunks_exact(4 * B::WIDTH) {
+            let w = B::WIDTH;
+            let vectors = [B::load_int(four), B::load_int(&four[w..]), B::load_int(&four[2 * w..]), B::load_int(&four[3 * w..])];
+            for (v, got) in B::Int::lookup256x4(&table, vectors).into_iter().enumerate() {
+                for k in 0..B::WIDTH {
+                    let i = four[v * B::WIDTH + k];
+                    assert_eq!(got.lane(k), table.0[(i & 255) as usize] as i32, "index {i}");
+                }
+            }
+        }
+    }
+
     #[target_feature(enable = "avx2")]
     fn check_avx2() {
         check::<avx2::X8>();
     }
 
+    #[target_feature(enable = "avx2")]
+    fn check_avx2_lookup() {
+        check_lookup::<avx2::X8>();
+    }
+
     #[target_feature(enable = "avx512f")]
     fn check_avx512() {
         check::<avx512::X16>();
+    }
+
+    #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
+    fn check_avx512_lookup() {
+        check_lookup::<avx512::X16>();
+    }
+
+    /// Four vectors looked up at once are each looked up alone.
+    #[test]
+    fn lookups_of_four_are_lookups_of_one() {
+        check_lookup::<F32x8>();
+        check_lookup::<F32x16>();
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the features were detected.
+            unsafe { check_avx2_lookup() };
+        }
+        if std::arch::is_x86_feature_detected!("avx512vbmi") && std::arch::is_x86_feature_detected!("avx512bw") {
+            // SAFETY: as above.
+            unsafe { check_avx512_lookup() };
+        }
     }
 
     /// The integer minimum and maximum that x86 takes for them are the

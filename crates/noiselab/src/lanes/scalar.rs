@@ -1,6 +1,6 @@
 //! `f32` and `f64` as one-lane [`Lanes`], with `i32` as their integer lanes.
 
-use super::{math, sealed::Sealed, Elem, IntLanes, Lanes, Table256};
+use super::{math, sealed::Sealed, Elem, IntLanes, Lanes, Table16, Table256};
 
 impl Sealed for f32 {}
 impl Sealed for f64 {}
@@ -118,7 +118,7 @@ impl IntLanes for i32 {
 }
 
 macro_rules! scalar_lanes {
-    ($t:ty, $floor:path, $sqrt:path, $pow:path, $dyn:ident) => {
+    ($t:ty, $floor:path, $sqrt:path, $pow:path, $truncate:path, $dyn:ident) => {
         impl Lanes for $t {
             type Elem = $t;
             type Int = i32;
@@ -192,8 +192,16 @@ macro_rules! scalar_lanes {
             }
             #[inline(always)]
             fn to_int_wrapping(self) -> i32 {
-                // `as i64` saturates (NaN → 0); the second cast wraps.
-                self as i64 as i32
+                // One truncating conversion where the value fits (as the
+                // vector lanes do); `as i64` saturates (NaN → 0), the second
+                // cast wraps. (Saturating at once took five more instructions
+                // an axis, on a scalar point's critical path.)
+                let t = $truncate(self);
+                if t != i32::MIN {
+                    t
+                } else {
+                    self as i64 as i32
+                }
             }
             #[inline(always)]
             fn from_int(i: i32) -> Self {
@@ -204,8 +212,8 @@ macro_rules! scalar_lanes {
                 table[idx as usize]
             }
             #[inline(always)]
-            fn lookup16(table: &[f32; 16], idx: i32) -> Self {
-                table[(idx & 15) as usize] as $t
+            fn lookup16(table: &Table16, idx: i32) -> Self {
+                <$t as Elem>::pick(table.single(), table.double())[(idx & 15) as usize]
             }
             #[inline(always)]
             fn lookup8(table: &[f32; 8], idx: i32) -> Self {
@@ -215,8 +223,42 @@ macro_rules! scalar_lanes {
     };
 }
 
-scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf, get_f32);
-scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow, get);
+scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf, truncate32, get_f32);
+scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow, truncate64, get);
+
+/// `x` truncated to `i32`, or `i32::MIN` where it does not fit (NaN too):
+/// x86-64's conversion, which has no saturation to fix up.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn truncate32(x: f32) -> i32 {
+    use core::arch::x86_64::{_mm_cvttss_si32, _mm_set_ss};
+    // SAFETY: SSE, part of x86-64.
+    unsafe { _mm_cvttss_si32(_mm_set_ss(x)) }
+}
+
+/// [`truncate32`] for `f64`.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn truncate64(x: f64) -> i32 {
+    use core::arch::x86_64::{_mm_cvttsd_si32, _mm_set_sd};
+    // SAFETY: SSE2, part of x86-64.
+    unsafe { _mm_cvttsd_si32(_mm_set_sd(x)) }
+}
+
+/// [`truncate32`] elsewhere: `i32::MIN` stands for every value out of
+/// range, which then takes the wrapping path.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn truncate32(x: f32) -> i32 {
+    if (-2147483648.0..2147483648.0).contains(&x) { x as i32 } else { i32::MIN }
+}
+
+/// [`truncate64`] elsewhere.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn truncate64(x: f64) -> i32 {
+    if (-2147483648.0..2147483648.0).contains(&x) { x as i32 } else { i32::MIN }
+}
 
 /// `DynNoise::get`, by name for the macro.
 #[inline(always)]

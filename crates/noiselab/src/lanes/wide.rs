@@ -7,7 +7,7 @@
 //! IEEE-754 operation as the scalar `f32` one, so results are identical.
 //! [`F32x16`] fills one AVX-512 register; [`F32x8`] one AVX2 register.
 
-use super::{math, sealed::Sealed, BatchLanes, IntLanes, Lanes, Table256};
+use super::{math, sealed::Sealed, BatchLanes, IntLanes, Lanes, Table16, Table256};
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 #[inline(always)]
@@ -238,8 +238,8 @@ macro_rules! wide_lanes {
                 $f(out)
             }
             #[inline(always)]
-            fn lookup16(table: &[f32; 16], idx: $i) -> Self {
-                Self::gather(table, idx.and_c(15))
+            fn lookup16(table: &Table16, idx: $i) -> Self {
+                Self::gather(table.single(), idx.and_c(15))
             }
             #[inline(always)]
             fn lookup8(table: &[f32; 8], idx: $i) -> Self {
