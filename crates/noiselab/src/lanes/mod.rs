@@ -260,21 +260,23 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
 pub struct Table256(pub [u8; 256]);
 
 /// A 16-entry float table for [`Lanes::lookup16`], held in `f32` and, widened
-/// exactly, in `f64`: one-lane `f64` reads its entry as it is (a conversion
-/// per entry was 24 of the 300 instructions of a scalar 3D point).
+/// exactly, in `f64` repeated to 256 entries: one-lane `f64` reads its entry
+/// as it is (a conversion per entry was 24 of the 300 instructions of a
+/// scalar 3D point), at a byte index (a hash read from a byte table) with no
+/// mask to apply.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Table16 {
     single: [f32; 16],
-    double: [f64; 16],
+    double: [f64; 256],
 }
 
 impl Table16 {
     /// The table of `entries`.
     pub const fn new(entries: [f32; 16]) -> Self {
-        let mut double = [0.0; 16];
+        let mut double = [0.0; 256];
         let mut k = 0;
-        while k < 16 {
-            double[k] = entries[k] as f64;
+        while k < 256 {
+            double[k] = entries[k % 16] as f64;
             k += 1;
         }
         Table16 { single: entries, double }
@@ -286,10 +288,10 @@ impl Table16 {
         &self.single
     }
 
-    /// The entries in `f64`.
+    /// Entry `i & 15` in `f64`.
     #[inline(always)]
-    pub fn double(&self) -> &[f64; 16] {
-        &self.double
+    pub fn double(&self, i: i32) -> f64 {
+        self.double[(i & 255) as usize]
     }
 }
 

@@ -118,7 +118,7 @@ impl IntLanes for i32 {
 }
 
 macro_rules! scalar_lanes {
-    ($t:ty, $floor:path, $sqrt:path, $pow:path, $truncate:path, $dyn:ident) => {
+    ($t:ty, $floor:path, $sqrt:path, $pow:path, $truncate:path, $lookup16:path, $dyn:ident) => {
         impl Lanes for $t {
             type Elem = $t;
             type Int = i32;
@@ -213,7 +213,7 @@ macro_rules! scalar_lanes {
             }
             #[inline(always)]
             fn lookup16(table: &Table16, idx: i32) -> Self {
-                <$t as Elem>::pick(table.single(), table.double())[(idx & 15) as usize]
+                $lookup16(table, idx)
             }
             #[inline(always)]
             fn lookup8(table: &[f32; 8], idx: i32) -> Self {
@@ -223,8 +223,14 @@ macro_rules! scalar_lanes {
     };
 }
 
-scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf, truncate32, get_f32);
-scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow, truncate64, get);
+scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf, truncate32, lookup16_f32, get_f32);
+scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow, truncate64, Table16::double, get);
+
+/// [`Lanes::lookup16`] in `f32`.
+#[inline(always)]
+fn lookup16_f32(table: &Table16, idx: i32) -> f32 {
+    table.single()[(idx & 15) as usize]
+}
 
 /// `x` truncated to `i32`, or `i32::MIN` where it does not fit (NaN too):
 /// x86-64's conversion, which has no saturation to fix up.
