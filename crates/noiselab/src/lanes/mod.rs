@@ -412,54 +412,58 @@ mod tests {
         }
     }
 
-    #[target_feature(enable = "avx2")]
-    fn check_avx2() {
-        check::<avx2::X8>();
+    /// The properties the tests below check, each on any lanes.
+    #[derive(Clone, Copy)]
+    enum Property {
+        NonnegativeMinMax,
+        LookupsOfFour,
+    }
+
+    #[inline(always)]
+    fn check_property<B: BatchLanes>(property: Property) {
+        match property {
+            Property::NonnegativeMinMax => check::<B>(),
+            Property::LookupsOfFour => check_lookup::<B>(),
+        }
     }
 
     #[target_feature(enable = "avx2")]
-    fn check_avx2_lookup() {
-        check_lookup::<avx2::X8>();
+    fn at_avx2(property: Property) {
+        check_property::<avx2::X8>(property);
     }
 
-    #[target_feature(enable = "avx512f")]
-    fn check_avx512() {
-        check::<avx512::X16>();
-    }
-
+    /// The features of the AVX-512 level.
     #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
-    fn check_avx512_lookup() {
-        check_lookup::<avx512::X16>();
+    fn at_avx512(property: Property) {
+        check_property::<avx512::X16>(property);
+    }
+
+    /// `property` on the baseline's lanes and on every level the CPU has.
+    fn at_every_level(property: Property) {
+        check_property::<F32x8>(property);
+        check_property::<F32x16>(property);
+        let best = crate::grid::SimdLevel::best();
+        if best >= crate::grid::SimdLevel::Avx2 {
+            // SAFETY: the CPU reports the level's features.
+            unsafe { at_avx2(property) };
+        }
+        if best == crate::grid::SimdLevel::Avx512 {
+            // SAFETY: as above.
+            unsafe { at_avx512(property) };
+        }
     }
 
     /// Four vectors looked up at once are each looked up alone.
     #[test]
     fn lookups_of_four_are_lookups_of_one() {
-        check_lookup::<F32x8>();
-        check_lookup::<F32x16>();
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the features were detected.
-            unsafe { check_avx2_lookup() };
-        }
-        if std::arch::is_x86_feature_detected!("avx512vbmi") && std::arch::is_x86_feature_detected!("avx512bw") {
-            // SAFETY: as above.
-            unsafe { check_avx512_lookup() };
-        }
+        at_every_level(Property::LookupsOfFour);
     }
 
     /// The integer minimum and maximum that x86 takes for them are the
     /// float ones.
     #[test]
     fn nonnegative_min_and_max_are_min_and_max() {
-        check::<F32x16>();
         check::<f32>();
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the features were detected.
-            unsafe { check_avx2() };
-        }
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: as above.
-            unsafe { check_avx512() };
-        }
+        at_every_level(Property::NonnegativeMinMax);
     }
 }
