@@ -401,25 +401,59 @@ impl Worley {
         // out as the row table: both then have a chunk of columns more
         // than read. Elsewhere the row table is gathered and has no leads.
         let (row_columns, lead_columns) = if D == 2 { (ncell + 2 + w, ncell + 2 + w) } else { (ncell + 2, 0) };
-        let mut row_table = Columns::new(row_columns, Interleaved::<D>::ROW.max(1));
+        // F1 in 2D and 3D leaves its rows' chunks in one cell to bands of
+        // rows (`Band`), a row table each.
+        let banded = (D == 2 || D == 3)
+            && self.output == CellOutput::F1
+            && matches!(self.metric, Metric::Euclidean | Metric::Manhattan);
+        let band_rows = if banded { band_capacity(out.len() / nx + 2, row_columns * Interleaved::<D>::ROW) } else { 1 };
+        let mut band = Band::<D>::new();
+        let mut row_table = Columns::new(row_columns * band_rows, Interleaved::<D>::ROW.max(1));
         let mut row_leads = Columns::new(lead_columns, Interleaved::<D>::ROW.max(1));
         let mut tables_plane = None;
 
-        for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
+        // The rows, then `None`: the band's last flush (one call site, so
+        // one copy of its kernels).
+        for piece in span.rows(out.len()).map(Some).chain([None]) {
             let mut p = [B::splat(0.0); D];
-            for a in 1..D {
-                p[a] = B::splat(span.axes.axis(a)[idx[a]]);
+            if let Some(RowPiece { idx, .. }) = piece {
+                for a in 1..D {
+                    p[a] = B::splat(span.axes.axis(a)[idx[a]]);
+                }
             }
-            let row_out = &mut out[o0..o0 + n];
-            if !(1..D).all(|a| p[a].lane(0).is_finite()) {
-                // NaN everywhere in the row (the point path's answer).
-                self.row_by_points::<B, D>(p, xs, i0, row_out);
-                continue;
-            }
+            let finite = piece.is_some() && (1..D).all(|a| p[a].lane(0).is_finite());
+            // (Read only where finite.)
             let (row_base, row_frac, _) = Self::split(p);
             let mut row_cell = [0i32; D];
             for a in 1..D {
                 row_cell[a] = row_base[a].lane(0);
+            }
+            // A band's rows read the plane's table and the chunk plan: they
+            // are filled before either changes, and when the band is full.
+            let joins = match piece {
+                Some(RowPiece { first, len, .. }) => {
+                    !finite || (plane == Some(row_cell) && band.piece == (first, len) && band.len < band_rows)
+                }
+                None => false,
+            };
+            if band.len > 0 && !joins {
+                let tables = BandTables {
+                    plan: &plan.reach,
+                    chunk_cells: &plan.cells,
+                    along: &along,
+                    lo,
+                    plane_table: &plane_table,
+                    row_table: &row_table,
+                    row_columns,
+                };
+                self.flush_band::<B, D>(&mut band, &tables, xs, out, redo);
+            }
+            let Some(RowPiece { first: i0, offset: o0, len: n, .. }) = piece else { break };
+            let row_out = &mut out[o0..o0 + n];
+            if !finite {
+                // NaN everywhere in the row (the point path's answer).
+                self.row_by_points::<B, D>(p, xs, i0, row_out);
+                continue;
             }
             if plane != Some(row_cell) {
                 for j in 0..rows {
@@ -473,14 +507,29 @@ impl Worley {
                     }
                     tables_plane = plane;
                 }
-                Interleaved::<D>::fill_row(&mut row_table, (&features, &row_leads), self.metric, row_frac, ncell + 2);
+                let slot = if banded { band.len } else { 0 };
+                let first = slot * row_columns;
+                Interleaved::<D>::fill_row(&mut row_table, first, (&features, &row_leads), self.metric, row_frac, ncell + 2);
+            }
+            let ring2 = self.ring_bound(2, edge);
+            // Deferred: the row's chunks in one cell, to its band.
+            let deferred = banded && plan.one_cell;
+            if deferred {
+                let mut coords = [0.0; D];
+                for a in 1..D {
+                    coords[a] = p[a].lane(0);
+                }
+                band.rows[band.len] = BandRow { offset: o0, ring2: ring2.lane(0), p: coords };
+                band.len += 1;
+                band.piece = (i0, n);
             }
             let row = RowFeatures {
                 p,
                 xs,
                 lo,
                 edge,
-                ring2: self.ring_bound(2, edge),
+                ring2,
+                deferred,
                 along: &along,
                 plan: &plan.reach,
                 chunk_cells: &plan.cells,
@@ -579,6 +628,7 @@ impl Worley {
             let end = n.min(k + chunks * w);
             let run = &mut out[k..end];
             match reach {
+                Reach::OneCell if row.deferred => {}
                 Reach::OneCell => {
                     let near = OneCell::<D> {
                         plane_table: row.plane_table,
@@ -602,6 +652,125 @@ impl Worley {
             self.row_by_points::<B, D>(row.p, row.xs, i0 + k, &mut out[k..k + count]);
         }
         redo.clear();
+    }
+
+    /// Fill the chunks in one cell of the band's rows, then empty it. Those
+    /// that need ring 2, and short last chunks, take the point path after.
+    #[inline(always)]
+    fn flush_band<B: BatchLanes, const D: usize>(
+        &self,
+        band: &mut Band<D>,
+        tables: &BandTables<'_>,
+        xs: &[f32],
+        out: &mut [f32],
+        redo: &mut Vec<usize>,
+    ) where
+        Worley: Noise<D>,
+    {
+        let (i0, n) = band.piece;
+        let w = B::WIDTH;
+        // Room for every chunk of every row (see `band_chunks`).
+        redo.reserve(band.len * (n / w + 1));
+        // The metric a constant in each arm, as for `row_points`.
+        match self.metric {
+            Metric::Euclidean => self.fixed(Metric::Euclidean, CellOutput::F1).band_chunks::<B, D>(band, tables, out, redo),
+            Metric::Manhattan => self.fixed(Metric::Manhattan, CellOutput::F1).band_chunks::<B, D>(band, tables, out, redo),
+            _ => self.band_chunks::<B, D>(band, tables, out, redo),
+        }
+        for &at in redo.iter() {
+            let (row, k) = (band.rows[at / n], at % n);
+            let mut p = [B::splat(0.0); D];
+            for a in 1..D {
+                p[a] = B::splat(row.p[a]);
+            }
+            let count = (n - k).min(w);
+            self.row_by_points::<B, D>(p, xs, i0 + k, &mut out[row.offset + k..row.offset + k + count]);
+        }
+        redo.clear();
+        band.len = 0;
+    }
+
+    /// The chunks in one cell of a band's rows, chunk by chunk, for F1 (the
+    /// least key, which `min` finds in any order). Each candidate's term
+    /// along axis 0 is formed once a chunk as [`Worley::chunk`] forms it,
+    /// then added to each row's terms as [`key_along`] adds them: the same
+    /// operations on the same values. Chunks that need ring 2, and short
+    /// last chunks, are pushed onto `redo` as `r · len + k` (row `r`, `k`
+    /// columns into its piece).
+    #[inline(always)]
+    fn band_chunks<B: BatchLanes, const D: usize>(
+        &self,
+        band: &Band<D>,
+        tables: &BandTables<'_>,
+        out: &mut [f32],
+        redo: &mut Vec<usize>,
+    ) {
+        let w = B::WIDTH;
+        let (i0, n) = band.piece;
+        let rows = &band.rows[..band.len];
+        let planes = Interleaved::<D>::ROWS;
+        // (No closures here: they would not be compiled for the caller's
+        // instruction set.)
+        let mut k = 0;
+        for &(reach, chunks) in tables.plan {
+            if k >= n {
+                break;
+            }
+            let end = n.min(k + chunks * w);
+            if reach == Reach::OneCell {
+                let whole = (end - k) / w * w;
+                let columns = tables.along.entries(3, i0 + k - tables.lo, whole);
+                for at in (0..whole).step_by(w) {
+                    let frac0 = columns.load::<B>(COLUMN_FRAC, at);
+                    let column_ring2 = columns.load::<B>(COLUMN_RING2, at);
+                    let cell = tables.chunk_cells[(k + at) / w];
+                    let plane = &tables.plane_table.field(cell, 0)[..3 * Interleaved::<D>::PLANE];
+                    // Each candidate's term along axis 0 (rows of cells j,
+                    // cells c − 1 along axis 0).
+                    let mut along0 = [[B::splat(0.0); 3]; 9];
+                    for (j, terms) in along0.iter_mut().enumerate().take(planes) {
+                        for (c, t) in terms.iter_mut().enumerate() {
+                            *t = term(self.metric, frac0 - B::splat(plane[Interleaved::<D>::lead(j, c)]));
+                        }
+                    }
+                    for (r, row) in rows.iter().enumerate() {
+                        let table = &tables.row_table.field(r * tables.row_columns + cell, 0)[..3 * Interleaved::<D>::ROW];
+                        let mut least = B::splat(0.0);
+                        for i in 0..3 * planes {
+                            let (j, c) = (i / 3, i % 3);
+                            let mut terms = [along0[j][c]; D];
+                            for (a, t) in terms.iter_mut().enumerate().skip(1) {
+                                *t = B::splat(table[Interleaved::<D>::term(j, a, c)]);
+                            }
+                            let key = key_of_terms(self.metric, &terms);
+                            least = if i == 0 { key } else { least.min_nonnegative(key) };
+                        }
+                        let ring2 = column_ring2.min_nonnegative(B::splat(row.ring2));
+                        if B::any(ring2.lt(least)) {
+                            // Within the room `flush_band` made (see `run`).
+                            if redo.len() < redo.capacity() {
+                                redo.push(r * n + k + at);
+                            } else {
+                                unreachable!("room for every chunk");
+                            }
+                        } else {
+                            let o = row.offset + k + at;
+                            self.finish(least).store(&mut out[o..o + w]);
+                        }
+                    }
+                }
+                if k + whole < end {
+                    for r in 0..rows.len() {
+                        if redo.len() < redo.capacity() {
+                            redo.push(r * n + k + whole);
+                        } else {
+                            unreachable!("room for every chunk");
+                        }
+                    }
+                }
+            }
+            k = end;
+        }
     }
 
     /// Chunks of a grid row from column `i` on whose lanes find their
@@ -822,6 +991,8 @@ struct RowFeatures<'a, B: BatchLanes, const D: usize> {
     p: [B; D],
     edge: B,
     ring2: B,
+    /// Whether the row's [`Reach::OneCell`] chunks wait in a [`Band`].
+    deferred: bool,
     xs: &'a [f32],
     lo: usize,
     along: &'a Columns,
@@ -916,6 +1087,63 @@ impl ChunkPlan {
         }
         (self.first, self.one_cell) = (first, one_cell);
     }
+}
+
+/// Grid rows of one plane of cells whose chunks in one cell wait to be
+/// filled together ([`Worley::flush_band`]): column by column, each
+/// chunk's terms along axis 0 then serve every row of the band, where a
+/// row at a time formed them again in each row (2D F1 over 2048² at 1/32
+/// on AVX-512: a subtraction and a multiplication of every candidate's,
+/// half the chunk's arithmetic). The rows' pieces start at the same column
+/// and have the same length, so they share the chunk plan.
+struct Band<const D: usize> {
+    rows: [BandRow<D>; BAND_ROWS],
+    len: usize,
+    /// The rows' first column and length.
+    piece: (usize, usize),
+}
+
+/// The most rows a [`Band`] holds: each row is a stream of stores, and
+/// more streams cost more than the terms they save (2D F1 over 2048² at
+/// 1/32 on AVX-512, probe: 0.38–0.39 ns a sample with 8 rows, 0.45–0.54
+/// with 16, 0.47–0.59 with 32, 0.57–0.75 a row at a time).
+const BAND_ROWS: usize = 8;
+
+/// A [`Band`]'s rows in a span of `span_rows` rows whose row tables hold
+/// `table` values each: at most [`BAND_ROWS`], and no more row tables than
+/// fit in 128 KiB (a grid row of 10 000 cells' tables is 360 KiB in 3D).
+fn band_capacity(span_rows: usize, table: usize) -> usize {
+    (32 * 1024 / table.max(1)).clamp(1, BAND_ROWS).min(span_rows)
+}
+
+/// A row waiting in a [`Band`].
+#[derive(Clone, Copy)]
+struct BandRow<const D: usize> {
+    /// Where the row's piece starts in the span's output.
+    offset: usize,
+    /// The row's part of the ring-2 bound (the same in every lane).
+    ring2: f32,
+    /// The row's coordinates along axes 1.. (`[0]` unused).
+    p: [f32; D],
+}
+
+impl<const D: usize> Band<D> {
+    fn new() -> Self {
+        Band { rows: [BandRow { offset: 0, ring2: 0.0, p: [0.0; D] }; BAND_ROWS], len: 0, piece: (0, 0) }
+    }
+}
+
+/// What a [`Band`]'s chunks read besides their rows: the span's chunk plan
+/// and columns (as [`RowFeatures`] has them), the plane's table, and the
+/// row tables, row `r`'s from column `r · row_columns` on.
+struct BandTables<'a> {
+    plan: &'a [(Reach, usize)],
+    chunk_cells: &'a [usize],
+    along: &'a Columns,
+    lo: usize,
+    plane_table: &'a Columns,
+    row_table: &'a Columns,
+    row_columns: usize,
 }
 
 /// Three candidates' keys and ids.
@@ -1123,21 +1351,30 @@ impl<const D: usize> Interleaved<D> {
     }
 
     /// The row's table over `columns` columns, for a row at `frac` in its
-    /// cells along axes 1... In 2D from the plane's `leads`
-    /// ([`Interleaved::gather_row_leads`]) lanes at a time, every entry's
-    /// term being along axis 1. (Gathered from `features` as elsewhere, it
-    /// took a fifteenth of 2D F1's time over 2048² on AVX-512, perf.)
+    /// cells along axes 1.., into the table's columns from `first` on. In
+    /// 2D from the plane's `leads` ([`Interleaved::gather_row_leads`])
+    /// lanes at a time, every entry's term being along axis 1. (Gathered
+    /// from `features` as elsewhere, it took a fifteenth of 2D F1's time
+    /// over 2048² on AVX-512, perf.)
     #[inline(always)]
-    fn fill_row<B: BatchLanes>(table: &mut Columns, (features, leads): (&Columns, &Columns), metric: Metric, frac: [B; D], columns: usize) {
+    fn fill_row<B: BatchLanes>(
+        table: &mut Columns,
+        first: usize,
+        (features, leads): (&Columns, &Columns),
+        metric: Metric,
+        frac: [B; D],
+        columns: usize,
+    ) {
         if D == 2 {
             let mut i = 0;
             while i < columns * Self::ROW {
                 let d = B::from_slice(leads.field(0, i)) - frac[1];
-                table.store(0, i, term(metric, d));
+                table.store(first, i, term(metric, d));
                 i += B::WIDTH;
             }
         } else {
-            Self::gather_row_layout(table, features, columns, Features::<D>::term, |_, _, v| v);
+            let to = &mut table.data[first * Self::ROW.max(1)..];
+            Self::gather_row_layout(to, features, columns, Features::<D>::term, |_, _, v| v);
         }
     }
 
@@ -1147,7 +1384,7 @@ impl<const D: usize> Interleaved<D> {
     /// forms them.
     #[inline(always)]
     fn gather_row_leads(table: &mut Columns, features: &Columns, columns: usize) {
-        Self::gather_row_layout(table, features, columns, Features::<D>::jitter, |j, a, t| {
+        Self::gather_row_layout(&mut table.data, features, columns, Features::<D>::jitter, |j, a, t| {
             Worley::lead::<f32>(digit(j, a - 1), t)
         });
     }
@@ -1157,7 +1394,7 @@ impl<const D: usize> Interleaved<D> {
     /// (row of cells `j`, axis `a` ≥ 1).
     #[inline(always)]
     fn gather_row_layout(
-        table: &mut Columns,
+        table: &mut [f32],
         features: &Columns,
         columns: usize,
         field: fn(usize, usize) -> usize,
@@ -1170,7 +1407,7 @@ impl<const D: usize> Interleaved<D> {
             for j in 0..Self::ROWS {
                 let at = (a - 1) * Self::ROWS + j;
                 let from = &features.field(field(j, a), 0)[..columns];
-                for (values, &v) in table.data.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
+                for (values, &v) in table.chunks_exact_mut(Self::ROW.max(1)).zip(from) {
                     values[at] = value(j, a, v);
                 }
             }
