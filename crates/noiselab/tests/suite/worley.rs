@@ -161,13 +161,12 @@ fn grid_fill_equals_the_point_path() {
             grid_equals_points(&w, &Grid::new([0.2, -1.0, 2.0, 0.7], [step, 0.3, 0.45, 0.6], [21, 3, 2, 2]));
         }
     }
-    // F1 fills rows of one plane of cells in bands of up to 32: full
-    // bands, bands cut by a new plane of cells, and rows of 3D slabs.
+    // 2D F1 fills rows of one row of cells in bands of up to eight: full
+    // bands, bands cut by a new row of cells or the end.
     for metric in [Metric::Euclidean, Metric::Manhattan] {
         let w = Worley::new(11).with_metric(metric).unwrap();
         grid_equals_points(&w, &Grid::new([-0.4, 3.01], [1.0 / 32.0, 1.0 / 64.0], [100, 70]));
         grid_equals_points(&w, &Grid::new([2.6, -1.3], [1.0 / 20.0, 0.03], [130, 41]));
-        grid_equals_points(&w, &Grid::new([0.1, 0.2, -0.7], [1.0 / 40.0, 0.05, 0.3], [90, 25, 3]));
     }
     let tiled = Worley::new(5).with_period([3, 4, 0, 0]).unwrap().with_jitter(0.8).unwrap();
     grid_equals_points(&tiled, &Grid::new([-5.0, -5.0], [1.0 / 16.0; 2], [200, 40]));
