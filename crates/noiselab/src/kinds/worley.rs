@@ -1106,8 +1106,8 @@ struct Band<const D: usize> {
 
 /// The most rows a [`Band`] holds: each row is a stream of stores, and
 /// more streams cost more than the terms they save (2D F1 over 2048² at
-/// 1/32 on AVX-512, probe: 0.38–0.39 ns a sample with 8 rows, 0.45–0.54
-/// with 16, 0.47–0.59 with 32, 0.57–0.75 a row at a time).
+/// 1/32 on AVX-512, probe, a noisy stretch: 0.37–0.41 ns a sample with 8
+/// rows, 0.44–0.55 with 4 or 16, 0.47–0.62 with 32, 0.68–0.69 with 1).
 const BAND_ROWS: usize = 8;
 
 /// A [`Band`]'s rows in a span of `span_rows` rows whose row tables hold
