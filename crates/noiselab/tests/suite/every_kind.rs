@@ -148,6 +148,10 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
 pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
     let size = |x: usize, rest: usize| core::array::from_fn(|d| if d == 0 { x } else { rest });
     let rest = if D > 2 { 3 } else { 5 };
+    // Axes 0 and 1, then the same for every axis past them.
+    fn axes<T: Copy, const D: usize>(v: [T; 3]) -> [T; D] {
+        core::array::from_fn(|d| v[d.min(2)])
+    }
     vec![
         Grid::new([-2.125; D], [0.0625; D], size(37, rest)),
         Grid::new([0.0; D], [1.0 / 32.0; D], size(70, rest)),
@@ -170,6 +174,13 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
             1 => 37,
             _ => 2,
         })),
+        // Tiles inside one cell along axis 0: rows of one to four whole
+        // chunks of 8 or 16 lanes, written with the chunks' positions held,
+        // on and off the lattice lines of axes 1.. (axis 2 from 0).
+        Grid::new(axes([2.0, -0.5, 0.0]), [1.0 / 32.0; D], axes([32, 40, 2])),
+        Grid::new(axes([-3.5, 1.25, 0.0]), [1.0 / 32.0; D], axes([16, 20, 2])),
+        // And across two cells: a chunk each (16 lanes) or two (8).
+        Grid::new(axes([1.0, -0.25, 0.5]), [1.0 / 16.0; D], axes([32, 24, 2])),
         // Non-finite coordinates (NaN where the scalar API gives NaN): the
         // last axis at 0.3 + i·∞ (NaN, then +∞), and axis 0 from 3.0e38 by
         // 1e37, past f32::MAX (≈ 3.4e38) from column 5 of each row.
