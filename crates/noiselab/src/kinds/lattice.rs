@@ -1212,11 +1212,9 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // (r − first_row) · nx in `out`.
     let first_row = span.start / nx;
     let end_row = first_row + out.len() / nx;
-    // Rows of a few whole chunks, each inside one cell (a tile inside a
-    // cell, or across a few), are written by `write_held_rows`: how many
-    // chunks, or 0.
-    let aligned = chunks.iter().enumerate().fold(true, |all, (k, ch)| all & (ch.start == k * w));
-    let held = if aligned && nx == chunks.len() * w && matches!(chunks.len(), 1 | 2 | 4) { chunks.len() } else { 0 };
+    // Rows of two whole chunks in one cell (a 32² tile inside a cell on
+    // AVX-512) are written by `write_held_rows`.
+    let one_pair = nx == 2 * w && chunks.len() == 2 && chunks[1].start == w && chunks[0].cell == chunks[1].cell;
     let mut r = first_row;
     while r < end_row {
         // Rows y0..y1 along axis 1: one cell, one position on axes 2...
@@ -1237,7 +1235,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
             let rows = (y1 - y).min(w);
             let at = (r + (y - y0) - first_row) * nx;
             let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f };
-            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), &mut bound, (&mut out[at..at + rows * nx], nx));
+            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, one_pair), (&point_rows.records, &slot_of, points), &mut bound, (&mut out[at..at + rows * nx], nx));
             y += rows;
         }
         r += y1 - y0;
@@ -1247,12 +1245,12 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
 
 /// [`fill_row_batches`]' batch: every point's records bound for the
 /// batch's rows, then the rows (`out`: the batch's, `nx` values each;
-/// `held`: the rows are that many whole chunks of one cell, or 0).
+/// `one_pair`: each row is two whole chunks in one cell).
 #[inline(always)]
 fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     batch: &RowBatch<'_, D>,
-    (chunks, chunk_axis, held): (&[Chunk], &[ChunkAxis], usize),
+    (chunks, chunk_axis, one_pair): (&[Chunk], &[ChunkAxis], bool),
     (hashed, slot_of, points): (&Columns, &[usize; MAX_CORNERS / 2], usize),
     bound: &mut Columns,
     (out, nx): (&mut [f32], usize),
@@ -1294,23 +1292,9 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
     }
     let table = bound.field(0, 0);
-    let records = BatchRecords { table, per_point, row: 0 };
-    let mut cells = [0usize; HELD_BAND_CHUNKS];
-    for (c, ch) in cells.iter_mut().zip(chunks) {
-        *c = ch.cell;
-    }
-    let chunks_held = (chunk_axis, &cells);
-    // Rows inside one cell read its corners once a row; across cells (a
-    // chunk a cell on AVX-512 at 1/16) once a chunk.
-    let one_cell = cells[..held].iter().all(|&c| c == cells[0]);
-    let rest = (weights, off_rest);
-    match (held, one_cell) {
-        (1, _) => return write_held_rows::<K, B, D, 1, true>(kind, batch, chunks_held, &records, rest, out),
-        (2, true) => return write_held_rows::<K, B, D, 2, true>(kind, batch, chunks_held, &records, rest, out),
-        (2, false) => return write_held_rows::<K, B, D, 2, false>(kind, batch, chunks_held, &records, rest, out),
-        (4, true) => return write_held_rows::<K, B, D, 4, true>(kind, batch, chunks_held, &records, rest, out),
-        (4, false) => return write_held_rows::<K, B, D, 4, false>(kind, batch, chunks_held, &records, rest, out),
-        _ => {}
+    if one_pair {
+        let records = BatchRecords { table, per_point, row: 0 };
+        return write_held_rows::<K, B, D>(kind, batch, (chunk_axis, chunks[0].cell), &records, (weights, off_rest), out);
     }
     // Indices, not zipped iterators: see `write_aligned_band`.
     for j in 0..batch.rows {
@@ -1320,39 +1304,42 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
     }
 }
 
-/// [`write_batch`]'s rows where each is `N` (1, 2 or 4) whole chunks, each
-/// inside one cell (`cells`: chunk k's; `ONE_CELL`: all the same), such as
-/// a tile inside a cell or across a few: the chunks' positions and fades
-/// held in registers down the batch, so a row costs its corners' splats
-/// (once, or once a chunk), its points and its stores. (Through [`Row::write_runs`],
-/// each row also paid the chunk loop's checks for a new cell and a partial
-/// store, and kept its corners' addresses on the stack: a 32² tile inside a
-/// cell took 9 980 instructions instead of 7 097 on AVX2, callgrind, and
-/// 0.423 instead of 0.363 ns/sample on AVX-512, medians of five probe runs.)
+/// [`write_batch`]'s rows where each is two whole chunks in one cell (a
+/// 32² tile inside a cell on AVX-512): the chunks' positions and fades held
+/// in registers down the batch, so a row costs its corners' splats, its
+/// points and its stores. (Through [`Row::write_runs`], each row also paid
+/// the chunk loop's checks for a new cell and a partial store, and kept its
+/// corners' addresses on the stack: such a tile took 0.423 ns/sample
+/// instead of 0.363, medians of five probe runs.)
+///
+/// Two chunks in one cell only: each such body inlined into a batch driver
+/// adds about 42 KiB to its stack frame in an unoptimized build, where the
+/// AVX-512 driver of improved noise needs 1.73 MiB without them and a
+/// rayon worker has 2 MiB. Bodies for one, two and four chunks, in one
+/// cell or across cells (an AVX2 tile: 9 980 → 7 097 instructions,
+/// callgrind; an fBm tile's octave 1), took it to 2.13 MiB, and a debug
+/// build's `fill_grid` overflowed its worker's stack. With this one: 1.77.
 #[inline(always)]
-fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize, const ONE_CELL: bool>(
+fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     batch: &RowBatch<'_, D>,
-    (chunk_axis, cells): (&[ChunkAxis], &[usize; HELD_BAND_CHUNKS]),
+    (chunk_axis, cell): (&[ChunkAxis], usize),
     records: &BatchRecords<'_>,
     (mut weights, off_rest): ([B; D], bool),
     out: &mut [f32],
 ) {
     let w = B::WIDTH;
-    let mut axis = [(B::cst(0.0), B::cst(0.0)); N];
-    for (a, c) in axis.iter_mut().zip(chunk_axis) {
-        *a = c.lanes::<B>();
-    }
-    for j in 0..batch.rows.min(out.len() / (N * w)) {
+    let axis = [chunk_axis[0].lanes::<B>(), chunk_axis[1].lanes::<B>()];
+    for j in 0..batch.rows.min(out.len() / (2 * w)) {
         weights[1] = B::splat(batch.fade[j]);
         let row = Row { frac: &[], fade: &[], weights, off_line: off_rest || batch.frac[j] != 0.0 };
-        let records = BatchRecords { row: j, ..*records };
-        let out = &mut out[j * N * w..(j + 1) * N * w];
+        let held = BatchRecords { row: j, ..*records }.held::<D>(cell, K::BOUND);
+        let out = &mut out[j * 2 * w..(j + 1) * 2 * w];
         // `off_line` once a row, not once a chunk.
         if row.off_line {
-            row.write_held::<K, N, true, ONE_CELL>(kind, &axis, (&records, cells), out);
+            row.write_held::<K, true>(kind, &axis, &held, out);
         } else {
-            row.write_held::<K, N, false, ONE_CELL>(kind, &axis, (&records, cells), out);
+            row.write_held::<K, false>(kind, &axis, &held, out);
         }
     }
 }
@@ -1928,25 +1915,13 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
         }
     }
 
-    /// [`write_held_rows`]' row: `N` whole chunks at positions and fades
-    /// `axis`, chunk k in cell `cells[k]` of `records` (`ONE_CELL`: all in
-    /// `cells[0]`). (Reading the corners again only where the cell changes
-    /// cost a 32² tile inside a cell 9 % more instructions on AVX2.)
+    /// [`write_held_rows`]' row: two whole chunks at positions and fades
+    /// `axis`, from the corners `held`.
     #[inline(always)]
-    fn write_held<K: Lattice<D>, const N: usize, const OFF_LINE: bool, const ONE_CELL: bool>(
-        &self,
-        kind: &K,
-        axis: &[(B, B); N],
-        (records, cells): (&BatchRecords<'_>, &[usize; HELD_BAND_CHUNKS]),
-        out: &mut [f32],
-    ) {
+    fn write_held<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, axis: &[(B, B); 2], held: &Held<B>, out: &mut [f32]) {
         let w = B::WIDTH;
-        let mut held = records.held::<D>(cells[0], K::BOUND);
         for (k, &(x, fade)) in axis.iter().enumerate() {
-            if !ONE_CELL && k > 0 {
-                held = records.held::<D>(cells[k], K::BOUND);
-            }
-            self.exact_with::<K, OFF_LINE>(kind, x, fade, &held).store(&mut out[k * w..(k + 1) * w]);
+            self.exact_with::<K, OFF_LINE>(kind, x, fade, held).store(&mut out[k * w..(k + 1) * w]);
         }
     }
 
