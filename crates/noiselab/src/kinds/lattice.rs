@@ -1212,9 +1212,6 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // (r − first_row) · nx in `out`.
     let first_row = span.start / nx;
     let end_row = first_row + out.len() / nx;
-    // Rows of two whole chunks in one cell (a 32² tile inside a cell on
-    // AVX-512) are written by `write_held_rows`.
-    let one_pair = nx == 2 * w && chunks.len() == 2 && chunks[1].start == w && chunks[0].cell == chunks[1].cell;
     let mut r = first_row;
     while r < end_row {
         // Rows y0..y1 along axis 1: one cell, one position on axes 2...
@@ -1235,7 +1232,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
             let rows = (y1 - y).min(w);
             let at = (r + (y - y0) - first_row) * nx;
             let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f };
-            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, one_pair), (&point_rows.records, &slot_of, points), &mut bound, (&mut out[at..at + rows * nx], nx));
+            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis), (&point_rows.records, &slot_of, points), &mut bound, (&mut out[at..at + rows * nx], nx));
             y += rows;
         }
         r += y1 - y0;
@@ -1244,13 +1241,12 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
 }
 
 /// [`fill_row_batches`]' batch: every point's records bound for the
-/// batch's rows, then the rows (`out`: the batch's, `nx` values each;
-/// `one_pair`: each row is two whole chunks in one cell).
+/// batch's rows, then the rows (`out`: the batch's, `nx` values each).
 #[inline(always)]
 fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     batch: &RowBatch<'_, D>,
-    (chunks, chunk_axis, one_pair): (&[Chunk], &[ChunkAxis], bool),
+    (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     (hashed, slot_of, points): (&Columns, &[usize; MAX_CORNERS / 2], usize),
     bound: &mut Columns,
     (out, nx): (&mut [f32], usize),
@@ -1292,55 +1288,11 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
     }
     let table = bound.field(0, 0);
-    if one_pair {
-        let records = BatchRecords { table, per_point, row: 0 };
-        return write_held_rows::<K, B, D>(kind, batch, (chunk_axis, chunks[0].cell), &records, (weights, off_rest), out);
-    }
     // Indices, not zipped iterators: see `write_aligned_band`.
     for j in 0..batch.rows {
         weights[1] = B::splat(batch.fade[j]);
         let row = Row { frac: &[], fade: &[], weights, off_line: off_rest || batch.frac[j] != 0.0 };
         row.write_runs(kind, (chunks, chunk_axis), &BatchRecords { table, per_point, row: j }, (&mut out[j * nx..(j + 1) * nx], false));
-    }
-}
-
-/// [`write_batch`]'s rows where each is two whole chunks in one cell (a
-/// 32² tile inside a cell on AVX-512): the chunks' positions and fades held
-/// in registers down the batch, so a row costs its corners' splats, its
-/// points and its stores. (Through [`Row::write_runs`], each row also paid
-/// the chunk loop's checks for a new cell and a partial store, and kept its
-/// corners' addresses on the stack: such a tile took 0.423 ns/sample
-/// instead of 0.363, medians of five probe runs.)
-///
-/// Two chunks in one cell only: each such body inlined into a batch driver
-/// adds about 42 KiB to its stack frame in an unoptimized build, where the
-/// AVX-512 driver of improved noise needs 1.73 MiB without them and a
-/// rayon worker has 2 MiB. Bodies for one, two and four chunks, in one
-/// cell or across cells (an AVX2 tile: 9 980 → 7 097 instructions,
-/// callgrind; an fBm tile's octave 1), took it to 2.13 MiB, and a debug
-/// build's `fill_grid` overflowed its worker's stack. With this one: 1.77.
-#[inline(always)]
-fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
-    kind: &K,
-    batch: &RowBatch<'_, D>,
-    (chunk_axis, cell): (&[ChunkAxis], usize),
-    records: &BatchRecords<'_>,
-    (mut weights, off_rest): ([B; D], bool),
-    out: &mut [f32],
-) {
-    let w = B::WIDTH;
-    let axis = [chunk_axis[0].lanes::<B>(), chunk_axis[1].lanes::<B>()];
-    for j in 0..batch.rows.min(out.len() / (2 * w)) {
-        weights[1] = B::splat(batch.fade[j]);
-        let row = Row { frac: &[], fade: &[], weights, off_line: off_rest || batch.frac[j] != 0.0 };
-        let held = BatchRecords { row: j, ..*records }.held::<D>(cell, K::BOUND);
-        let out = &mut out[j * 2 * w..(j + 1) * 2 * w];
-        // `off_line` once a row, not once a chunk.
-        if row.off_line {
-            row.write_held::<K, true>(kind, &axis, &held, out);
-        } else {
-            row.write_held::<K, false>(kind, &axis, &held, out);
-        }
     }
 }
 
@@ -1569,14 +1521,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let at = (r - first_row) * nx;
         let band_out = &mut out[at..at + (y1 - y0) * nx];
         let band_rows = (&frac1[y0..y1], &fade1[y0..y1]);
-        if aligned && nx == whole * w && whole <= HELD_BAND_CHUNKS {
-            match whole {
-                1 => write_held_band::<B, 1>(band_out, band_rows, coef),
-                2 => write_held_band::<B, 2>(band_out, band_rows, coef),
-                3 => write_held_band::<B, 3>(band_out, band_rows, coef),
-                _ => write_held_band::<B, 4>(band_out, band_rows, coef),
-            }
-        } else if aligned && prefetch {
+        if aligned && prefetch {
             write_aligned_band::<B, true>(band_out, nx, band_rows, (coef, whole));
         } else if aligned {
             write_aligned_band::<B, false>(band_out, nx, band_rows, (coef, whole));
@@ -1686,37 +1631,6 @@ fn write_aligned_band<B: BatchLanes, const PREFETCH: bool>(band_out: &mut [f32],
     }
 }
 
-/// Most chunks a row of [`write_held_band`] holds: their coefficients take
-/// four registers each, 16 in all.
-const HELD_BAND_CHUNKS: usize = 4;
-
-/// [`fill_bands`]' rows of `N` whole chunks (a 32² tile on AVX-512: two):
-/// the chunks' coefficients held in registers down the band, so a row
-/// costs its two splats, the arithmetic and the stores. (Through
-/// [`write_aligned_band`], a row of one pair of chunks paid a turn of its
-/// block and pair loops and reloaded the coefficients: a fast 32² tile
-/// took 5 097 instructions instead of 4 693 on AVX2, callgrind, and 0.341
-/// instead of 0.300 ns/sample on AVX-512, medians of five probe runs.)
-#[inline(always)]
-fn write_held_band<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, fade): (&[f32], &[f32]), coef: &[f32]) {
-    let w = B::WIDTH;
-    let mut held = [[B::cst(0.0); 4]; N];
-    for (k, c) in held.iter_mut().enumerate() {
-        for (m, v) in c.iter_mut().enumerate() {
-            *v = B::from_slice(&coef[(4 * k + m) * w..]);
-        }
-    }
-    // Indices, not zipped iterators (see `write_aligned_band`).
-    let rows = frac.len().min(fade.len()).min(band_out.len() / (N * w));
-    for r in 0..rows {
-        let (v, s) = (B::splat(frac[r]), B::splat(fade[r]));
-        let row = &mut band_out[r * N * w..(r + 1) * N * w];
-        for (k, &c) in held.iter().enumerate() {
-            band_point(c, v, s).store(&mut row[k * w..(k + 1) * w]);
-        }
-    }
-}
-
 /// A chunk's four half-blends ([`fill_bands`]) at its positions along axis
 /// 0, from its cells' coefficients (16 fields: four per half-blend).
 #[inline(always)]
@@ -1734,12 +1648,7 @@ fn half_blends<K: Lattice<D>, B: BatchLanes, const D: usize>(axis: &ChunkAxis, c
 #[inline(always)]
 fn band_value<B: BatchLanes>(c: &[f32], v: B, s: B) -> B {
     let w = B::WIDTH;
-    band_point([B::from_slice(c), B::from_slice(&c[w..]), B::from_slice(&c[2 * w..]), B::from_slice(&c[3 * w..])], v, s)
-}
-
-/// [`band_value`] from coefficients in registers.
-#[inline(always)]
-fn band_point<B: BatchLanes>([p0, p1, q0, q1]: [B; 4], v: B, s: B) -> B {
+    let [p0, p1, q0, q1] = [B::from_slice(c), B::from_slice(&c[w..]), B::from_slice(&c[2 * w..]), B::from_slice(&c[3 * w..])];
     (p0 + p1 * v) + s * (q0 + q1 * v)
 }
 
@@ -1912,16 +1821,6 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
                 crate::lanes::prefetch_store(out.as_ptr().wrapping_add(ch.start + ROW_PREFETCH_AHEAD));
             }
             emit(self.exact_with::<K, OFF_LINE>(kind, x, fade, &held), &mut out[ch.start..]);
-        }
-    }
-
-    /// [`write_held_rows`]' row: two whole chunks at positions and fades
-    /// `axis`, from the corners `held`.
-    #[inline(always)]
-    fn write_held<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, axis: &[(B, B); 2], held: &Held<B>, out: &mut [f32]) {
-        let w = B::WIDTH;
-        for (k, &(x, fade)) in axis.iter().enumerate() {
-            self.exact_with::<K, OFF_LINE>(kind, x, fade, held).store(&mut out[k * w..(k + 1) * w]);
         }
     }
 
