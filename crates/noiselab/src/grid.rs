@@ -706,7 +706,7 @@ macro_rules! batch_clones {
             pub(crate) fn span<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, span: Span<'_, D>, out: &mut [f32]) {
                 // SAFETY: `runnable` never exceeds the features the CPU
                 // reports, and the baseline clone needs none.
-                unsafe {
+                crate::grid::with_driver_stack(|| unsafe {
                     match crate::grid::runnable(level) {
                         #[cfg(all(feature = "std", target_arch = "x86_64"))]
                         SimdLevel::Avx512 => avx512::span(noise, span, out),
@@ -714,13 +714,13 @@ macro_rules! batch_clones {
                         SimdLevel::Avx2 => avx2::span(noise, span, out),
                         _ => baseline::span(noise, span, out),
                     }
-                }
+                })
             }
 
             /// `points` at `level` (the best the CPU has up to it).
             pub(crate) fn points<N: Noise<D>, const D: usize>(level: SimdLevel, noise: &N, points: &[[f32; D]], out: &mut [f32]) {
                 // SAFETY: as for `span`.
-                unsafe {
+                crate::grid::with_driver_stack(|| unsafe {
                     match crate::grid::runnable(level) {
                         #[cfg(all(feature = "std", target_arch = "x86_64"))]
                         SimdLevel::Avx512 => avx512::points(noise, points, out),
@@ -728,7 +728,7 @@ macro_rules! batch_clones {
                         SimdLevel::Avx2 => avx2::points(noise, points, out),
                         _ => baseline::points(noise, points, out),
                     }
-                }
+                })
             }
 
             #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -740,6 +740,40 @@ macro_rules! batch_clones {
     };
 }
 pub(crate) use batch_clones;
+
+/// Runs `driver` (a batch driver) where the stack has room for it.
+///
+/// Unoptimized code keeps its own stack slot for every temporary of every
+/// inlined body, and a driver inlines its kind's whole batch code: at
+/// opt-level 0 a driver's frame measured up to 5.4 MiB (3D and 4D Worley on
+/// AVX-512; 4D improved 2.4 MiB), beyond the 2 MiB a spawned thread or a
+/// rayon worker gets, so a user's debug build overflowed there. Where less
+/// than [`UNOPTIMIZED_RED_ZONE`] is left, the driver runs on a fresh stack of
+/// [`UNOPTIMIZED_STACK`] (stacker), once per driver call, so once per span or
+/// point list. Cargo's `debug_assertions` is the sign of such a build (its
+/// dev profile sets both); elsewhere a driver's frame is a few KiB and this
+/// is a plain call.
+#[inline(always)]
+pub(crate) fn with_driver_stack<R>(driver: impl FnOnce() -> R) -> R {
+    #[cfg(all(feature = "std", debug_assertions))]
+    {
+        stacker::maybe_grow(UNOPTIMIZED_RED_ZONE, UNOPTIMIZED_STACK, driver)
+    }
+    #[cfg(not(all(feature = "std", debug_assertions)))]
+    {
+        driver()
+    }
+}
+
+/// The stack a batch driver needs in an unoptimized build: the largest
+/// frame measured (5.4 MiB) with room to spare.
+#[cfg(all(feature = "std", debug_assertions))]
+const UNOPTIMIZED_RED_ZONE: usize = 8 << 20;
+
+/// The stack [`with_driver_stack`] gives a driver where the red zone is not
+/// left: address space, its pages taken only as the frame touches them.
+#[cfg(all(feature = "std", debug_assertions))]
+const UNOPTIMIZED_STACK: usize = 16 << 20;
 
 /// One level's module of [`batch_clones!`]: the span and point drivers on
 /// lanes `$lanes`, compiled with `$feature`.

@@ -85,3 +85,8 @@ pub use noise::{sample_x16, sample_x8, DynNoise, Noise, NoiseGradient};
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// Every kind's batch fills in an unoptimized build, on a thread's stack.
+#[cfg(doctest)]
+#[doc = include_str!("../tests/unoptimized_stack.md")]
+pub struct UnoptimizedStackDoctests;
