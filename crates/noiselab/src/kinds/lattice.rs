@@ -1202,7 +1202,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (min_cell, points): (i32, usize),
     (cell1, frac1, fade1): AxisRows<'_>,
 ) {
-    let (nx, ny) = (span.axes.size(0), span.axes.size(1));
+    let nx = span.axes.size(0);
     let w = B::WIDTH;
     // Each point's bound records, 16 rows per field.
     let mut bound = Columns::kept_in(kept_bound, 1, points * PointRows::<D>::PER_PLANE * K::BOUND.total() * 16);
@@ -1214,15 +1214,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let end_row = first_row + out.len() / nx;
     let mut r = first_row;
     while r < end_row {
-        // Rows y0..y1 along axis 1: one cell, one position on axes 2...
-        let idx = span.axes.row_indices(r);
-        let y0 = idx[1];
-        let y1 = run_end(&cell1[..ny.min(y0 + (end_row - r))], y0, w);
-        let (mut cell, mut f) = ([0i32; D], [0f32; D]);
-        cell[1] = cell1[y0];
-        for d in 2..D {
-            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
-        }
+        let (y0, y1, cell, f) = axis1_run::<K, D>(kind, &span, cell1, (r, end_row), w);
         if plane != Some(cell) {
             slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
             plane = Some(cell);
@@ -1238,6 +1230,25 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
         r += y1 - y0;
     }
     bound.keep_in(kept_bound);
+}
+
+/// The run of grid rows from row `r` (of a span's whole rows, up to
+/// `end_row`) in one cell along axis 1 and at one position on axes 2..:
+/// rows `y0..y1` along axis 1, their cell on axes 1.. (`cell1`: each row's
+/// along axis 1, from [`split_axis`]) and their positions on axes 2..
+/// (axes 0 and 1 left at 0). The walk [`fill_row_batches`] and
+/// [`fill_bands`] share.
+#[inline(always)]
+fn axis1_run<K: Lattice<D>, const D: usize>(kind: &K, span: &Span<'_, D>, cell1: &[i32], (r, end_row): (usize, usize), w: usize) -> (usize, usize, [i32; D], [f32; D]) {
+    let idx = span.axes.row_indices(r);
+    let y0 = idx[1];
+    let y1 = run_end(&cell1[..span.axes.size(1).min(y0 + (end_row - r))], y0, w);
+    let (mut cell, mut f) = ([0i32; D], [0f32; D]);
+    cell[1] = cell1[y0];
+    for d in 2..D {
+        (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
+    }
+    (y0, y1, cell, f)
 }
 
 /// [`fill_row_batches`]' batch: every point's records bound for the
@@ -1419,7 +1430,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     (min_cell, points, narrow): (i32, usize, bool),
     ((cell1, frac1, fade1), [kept_lower, kept_upper, kept_halves, coef]): (AxisRows<'_>, [&mut Vec<f32>; 4]),
 ) {
-    let (nx, ny) = (span.axes.size(0), span.axes.size(1));
+    let nx = span.axes.size(0);
     let w = B::WIDTH;
     let rows = PointRows::<D>::PER_PLANE;
     let ncell = points - 1;
@@ -1450,15 +1461,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut r = first_row;
     while r < end_row {
         // The band: rows y0..y1 of one plane, in one cell along axis 1.
-        let idx = span.axes.row_indices(r);
-        let y0 = idx[1];
-        let y_end = ny.min(y0 + (end_row - r));
-        let y1 = run_end(&cell1[..y_end], y0, w);
-        let (mut cell, mut f) = ([0i32; D], [0f32; D]);
-        cell[1] = cell1[y0];
-        for d in 2..D {
-            (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
-        }
+        let (y0, y1, cell, f) = axis1_run::<K, D>(kind, &span, cell1, (r, end_row), w);
         let slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
         // Bind the plane's rows at the band's offsets on axes 2.., with
         // v = 0 and v = 1 on axis 1.
