@@ -175,8 +175,9 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
             _ => 2,
         })),
         // Tiles inside one cell along axis 0: rows of one to four whole
-        // chunks of 8 or 16 lanes, in batches cut from axis 1's runs, on and
-        // off the lattice lines of axes 1.. (axis 2 from 0).
+        // chunks of 8 or 16 lanes, in batches cut from axis 1's runs and
+        // written with the chunks' positions held, on and off the lattice
+        // lines of axes 1.. (axis 2 from 0).
         Grid::new(axes([2.0, -0.5, 0.0]), [1.0 / 32.0; D], axes([32, 40, 2])),
         Grid::new(axes([-3.5, 1.25, 0.0]), [1.0 / 32.0; D], axes([16, 20, 2])),
         // And across two cells: a chunk each (16 lanes) or two (8).
