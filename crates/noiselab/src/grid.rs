@@ -745,8 +745,8 @@ pub(crate) use batch_clones;
 ///
 /// Unoptimized code keeps its own stack slot for every temporary of every
 /// inlined body, and a driver inlines its kind's whole batch code: at
-/// opt-level 0 a driver's frame measured up to 5.4 MiB (3D and 4D Worley on
-/// AVX-512; 4D improved 2.4 MiB), beyond the 2 MiB a spawned thread or a
+/// opt-level 0 a driver's frame measured up to 5.3 MiB (2D to 4D Worley on
+/// AVX-512; 4D improved 3.1 MiB), beyond the 2 MiB a spawned thread or a
 /// rayon worker gets, so a user's debug build overflowed there. Where less
 /// than [`UNOPTIMIZED_RED_ZONE`] is left, the driver runs on a fresh stack of
 /// [`UNOPTIMIZED_STACK`] (stacker), once per driver call, so once per span or
@@ -766,7 +766,7 @@ pub(crate) fn with_driver_stack<R>(driver: impl FnOnce() -> R) -> R {
 }
 
 /// The stack a batch driver needs in an unoptimized build: the largest
-/// frame measured (5.4 MiB) with room to spare.
+/// frame measured (5.3 MiB) with room to spare.
 #[cfg(all(feature = "std", debug_assertions))]
 const UNOPTIMIZED_RED_ZONE: usize = 8 << 20;
 
