@@ -1338,8 +1338,9 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
 /// (once, or once a chunk), its points and its stores. (Through [`Row::write_runs`],
 /// each row also paid the chunk loop's checks for a new cell and a partial
 /// store, and kept its corners' addresses on the stack: a 32² tile inside a
-/// cell took 9 980 instructions instead of 7 097 on AVX2, callgrind, and
-/// 0.423 instead of 0.363 ns/sample on AVX-512, medians of five probe runs.)
+/// cell took 9 980 instructions instead of 7 097 on AVX2, callgrind. On
+/// AVX-512 the probe's medians gave 0.423 against 0.363 ns/sample in one
+/// stop and 0.415 against 0.395 in the next, within a build's spread.)
 #[inline(always)]
 fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize, const ONE_CELL: bool>(
     kind: &K,
