@@ -68,7 +68,7 @@ mod noise;
 mod scratch;
 
 pub use compose::{ComposeError, Fractal, FractalMode, Looped, Octave, Warp};
-pub use grid::{Accuracy, Axes, Grid, GridError, SimdLevel, Span};
+pub use grid::{Accuracy, Axes, Grid, GridError, SimdLevel, Span, Stores, STREAM_MIN_VALUES};
 pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;
 pub use kinds::fast::Fast;

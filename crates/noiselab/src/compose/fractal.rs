@@ -6,7 +6,7 @@
 use alloc::vec::Vec;
 
 use super::ComposeError;
-use crate::grid::{store_prefix, Axes, RowPiece, SimdLevel, Span};
+use crate::grid::{store_prefix, Axes, RowPiece, SimdLevel, Span, Stores};
 use crate::lanes::{BatchLanes, Lanes};
 use crate::noise::{Noise, NoiseGradient};
 
@@ -634,7 +634,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                     // kind's grid path is then compiled once per kind and
                     // level, not again in every fractal over it (one call per
                     // block).
-                    noise.dispatch_span(B::LEVEL, Span { axes: &scaled[i], start, accuracy: span.accuracy }, octave);
+                    noise.dispatch_span(B::LEVEL, Span { axes: &scaled[i], start, accuracy: span.accuracy, stores: Stores::Cached }, octave);
                 }
             }
             let block_out = &mut out[done..done + len];
@@ -642,7 +642,7 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             if finite {
                 combine_finite(B::LEVEL, &self.steps, self.mode, octaves, block_out);
             } else {
-                let part = Span { axes: span.axes, start, accuracy: span.accuracy };
+                let part = Span { start, ..span };
                 let amplitudes = self.steps.lane_amplitudes::<B>(summed);
                 self.combine_with_positions::<B, D>(part, self.steps.filled(octaves, &amplitudes), block_out);
             }
@@ -905,7 +905,7 @@ impl Steps {
     }
 }
 
-/// Chunks of lanes per run of [`Fractal::combine_in_order`]: 64 keeps a
+/// Chunks of lanes per run of [`Steps::combine_in_order`]: 64 keeps a
 /// run's sums in 4 KiB (AVX2) to 8 KiB (AVX-512).
 const COMBINE_RUN: usize = 64;
 

@@ -32,8 +32,8 @@
 //! [`Noise::get_f32`]: crate::Noise::get_f32
 
 use super::{corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, EntriesMut, MAX_CORNERS};
-use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span};
-use crate::lanes::{BatchLanes, IntLanes, Lanes};
+use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span, Stores};
+use crate::lanes::{BatchLanes, IntLanes, Lanes, StreamedRun};
 use alloc::vec::Vec;
 
 /// How many float and integer fields of a [`Corner`] are in use.
@@ -605,6 +605,8 @@ struct Tables {
     frac1: Vec<f32>,
     fade1: Vec<f32>,
     band_coef: Vec<f32>,
+    /// [`Stores::Streamed`]: the rows waiting to be copied out ([`Staging`]).
+    staged: Vec<f32>,
 }
 
 crate::scratch::per_thread!(KEPT_TABLES: Tables);
@@ -612,7 +614,7 @@ crate::scratch::per_thread!(KEPT_TABLES: Tables);
 impl crate::scratch::KeptVectors for Tables {
     fn held_bytes(&self) -> usize {
         use crate::scratch::bytes_of;
-        let floats = [&self.records, &self.bound, &self.bound_upper, &self.coef, &self.blends, &self.frac0, &self.fade0, &self.frac1, &self.fade1, &self.band_coef];
+        let floats = [&self.records, &self.bound, &self.bound_upper, &self.coef, &self.blends, &self.frac0, &self.fade0, &self.frac1, &self.fade1, &self.band_coef, &self.staged];
         floats.into_iter().map(bytes_of).sum::<usize>()
             + bytes_of(&self.cell0)
             + bytes_of(&self.cell1)
@@ -814,6 +816,9 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     let mut tables = KEPT_TABLES.take();
     fill_span_with::<K, B, D>(kind, span, out, &mut tables);
     KEPT_TABLES.keep(tables);
+    if span.stores == Stores::Streamed {
+        crate::lanes::stream_fence();
+    }
 }
 
 /// [`fill_span`] with the thread's kept vectors.
@@ -843,6 +848,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         frac1,
         fade1,
         band_coef,
+        staged,
     } = tables;
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
@@ -895,6 +901,11 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         && !by_plane
         && (ncell + 1) * PointRows::<D>::PER_PLANE * K::BOUND.total() <= BATCH_POINT_FIELDS
         && whole_rows;
+    // Streamed: the bands, the batches and whole rows of long runs are
+    // staged and copied out (the rest, plane blends included, store
+    // plainly).
+    let stage = span.stores == Stores::Streamed && whole_rows && long_runs && !by_plane && nx <= STAGE_VALUES;
+    let mut staging = Staging::new(staged, stage, (nx, w));
     // Runs of columns in one cell, as (start, end, cell), where they are used.
     if long_runs {
         cell_runs(&cell0[..cols], min_cell, w, run_total, runs);
@@ -936,13 +947,13 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         if bands {
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
             let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
-            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points, false), (axis1, kept));
+            fill_bands::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), &mut point_rows, (min_cell, points, false), (axis1, kept));
         } else {
             // Axis 1 by row, for the batches' lanes.
             let ny = span.axes.size(1);
             split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w + w);
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
-            fill_row_batches::<K, B, D>(kind, span, out, (chunks, chunk_axis), (&mut point_rows, kept_bound), (min_cell, points), axis1);
+            fill_row_batches::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), (&mut point_rows, kept_bound), (min_cell, points), axis1);
         }
         point_rows.records.keep_in(kept_records);
         return;
@@ -986,7 +997,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             // and freed this one (a malloc and a free per fBm tile, perf).
             bound.keep_in(kept_bound);
             let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
-            fill_bands::<K, B, D>(kind, span, out, (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
+            fill_bands::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
             point_rows.records.keep_in(kept_records);
             return;
         }
@@ -1014,7 +1025,8 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     for d in 0..D {
         grid_points = grid_points.saturating_mul(span.axes.size(d));
     }
-    let prefetch = grid_points >= PREFETCH_MIN_VALUES;
+    // (Staged rows store to L1.)
+    let prefetch = grid_points >= PREFETCH_MIN_VALUES && !staging.on();
 
     for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
         // Axes 1..: the same for the whole row.
@@ -1085,13 +1097,17 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             // Whole rows: every chunk, written where it starts.
             (true, false) if whole => {
                 let records = CellRecords { columns: records, fields: bound_fields };
-                row.write_runs(kind, (chunks, chunk_axis), &records, (&mut out[o0..], prefetch));
+                let to = staging.target(&mut out[o0..]);
+                row.write_runs(kind, (chunks, chunk_axis), &records, (to, prefetch));
+                staging.flush::<B>(&mut out[o0..o0 + n]);
             }
             (true, true) if whole => {
+                let to = staging.target(&mut out[o0..]);
                 for (ch, axis) in chunks.iter().zip(chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    emit(poly_at::<K, B, D>(x, fade, &OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() }), &mut out[o0 + ch.start..]);
+                    emit(poly_at::<K, B, D>(x, fade, &OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() }), &mut to[ch.start..]);
                 }
+                staging.flush::<B>(&mut out[o0..o0 + n]);
             }
             // Part of a row: chunks clipped to it.
             (true, false) => {
@@ -1147,6 +1163,64 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     blends.keep_in(kept_blends);
 }
 
+/// Most values a [`Stores::Streamed`] band stages at a time, and the
+/// widest rows a streamed fill stages (wider ones store plainly): 4 KiB.
+/// Larger pieces drain less of their copy while the next is computed (see
+/// [`StreamedRun`]).
+const STAGE_VALUES: usize = 1024;
+
+/// A [`Stores::Streamed`] fill's rows where they are not whole registers
+/// in order ([`stream_band`]): written first to a buffer the caches hold,
+/// then copied out past them ([`stream_copy`]). The row writers keep their
+/// stores as they are (whole registers at any column, lanes past a row's
+/// end that the next chunk overwrites), and the output's lines are never
+/// read from memory.
+///
+/// [`stream_copy`]: crate::lanes::stream_copy
+struct Staging<'a> {
+    /// The buffer, or `None` where the fill stores plainly.
+    buf: Option<&'a mut Vec<f32>>,
+}
+
+impl<'a> Staging<'a> {
+    /// Staging in `buf` where `on`, for rows of `nx` values: room for a
+    /// band's piece ([`STAGE_VALUES`], or a row), a batch of `w` rows and
+    /// a register past either.
+    #[inline(always)]
+    fn new(buf: &'a mut Vec<f32>, on: bool, (nx, w): (usize, usize)) -> Self {
+        if !on {
+            return Staging { buf: None };
+        }
+        super::unwritten(buf, STAGE_VALUES.max(w * nx) + w);
+        Staging { buf: Some(buf) }
+    }
+
+    /// Whether the fill stages its rows.
+    #[inline(always)]
+    fn on(&self) -> bool {
+        self.buf.is_some()
+    }
+
+    /// Where to write values bound for the start of `out`: `out` itself,
+    /// or the whole buffer (a register longer than what it stages).
+    #[inline(always)]
+    fn target<'b>(&'b mut self, out: &'b mut [f32]) -> &'b mut [f32] {
+        match &mut self.buf {
+            Some(buf) => buf,
+            None => out,
+        }
+    }
+
+    /// Copy the `n` staged values to `out` (`n` long) past the caches;
+    /// nothing where the fill stores plainly.
+    #[inline(always)]
+    fn flush<B: BatchLanes>(&self, out: &mut [f32]) {
+        if let Some(buf) = &self.buf {
+            crate::lanes::stream_copy::<B>(&buf[..out.len()], out);
+        }
+    }
+}
+
 /// Up to WIDTH rows of one plane of cells, in one cell along axis 1 and at
 /// one position on axes 2.., written together ([`write_batch`]).
 struct RowBatch<'a, const D: usize> {
@@ -1196,7 +1270,7 @@ impl<B: BatchLanes> Source<B> for BatchRow<'_> {
 fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     span: Span<'_, D>,
-    out: &mut [f32],
+    (out, staging): (&mut [f32], &mut Staging<'_>),
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     (point_rows, kept_bound): (&mut PointRows<D>, &mut Vec<f32>),
     (min_cell, points): (i32, usize),
@@ -1215,7 +1289,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // Rows of a few whole chunks, each inside one cell (a tile inside a
     // cell, or across a few), are written by `write_held_rows`: how many
     // chunks, or 0.
-    let aligned = chunks.iter().enumerate().fold(true, |all, (k, ch)| all & (ch.start == k * w));
+    let aligned = chunks_aligned(chunks, w);
     let held = if aligned && nx == chunks.len() * w && matches!(chunks.len(), 1 | 2 | 4) { chunks.len() } else { 0 };
     let mut r = first_row;
     while r < end_row {
@@ -1229,12 +1303,22 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
             let rows = (y1 - y).min(w);
             let at = (r + (y - y0) - first_row) * nx;
             let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f };
-            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), &mut bound, (&mut out[at..at + rows * nx], nx));
+            let to = &mut staging.target(&mut out[at..])[..rows * nx];
+            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), &mut bound, (to, nx));
+            staging.flush::<B>(&mut out[at..at + rows * nx]);
             y += rows;
         }
         r += y1 - y0;
     }
     bound.keep_in(kept_bound);
+}
+
+/// Whether chunk k starts at column k · `w` for every k (runs of whole
+/// registers: 2D at 1/32, 32² tiles; every narrow band), so that rows are
+/// written a register at a time with no start to read per chunk.
+#[inline(always)]
+fn chunks_aligned(chunks: &[Chunk], w: usize) -> bool {
+    chunks.iter().enumerate().fold(true, |all, (k, ch)| all & (ch.start == k * w))
 }
 
 /// The run of grid rows from row `r` (of a span's whole rows, up to
@@ -1486,7 +1570,7 @@ fn tall_cells<K: Lattice<D>, B: BatchLanes, const D: usize>(
 fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     span: Span<'_, D>,
-    out: &mut [f32],
+    (out, staging): (&mut [f32], &mut Staging<'_>),
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
     point_rows: &mut PointRows<D>,
     (min_cell, points, narrow): (i32, usize, bool),
@@ -1506,16 +1590,23 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     // Chunks before `whole` store all their lanes inside the row; the
     // rest, at its end, store as many as fit.
     let whole = chunks.partition_point(|ch| ch.start + w <= nx);
-    // Chunk k at column k · w (every narrow band, and runs of whole
-    // registers: 2D at 1/32, 32² tiles): each row is stored a register at
-    // a time, with no start to read and check per chunk.
-    let aligned = chunks.iter().enumerate().all(|(k, ch)| ch.start == k * w);
+    // Each row stored a register at a time, where it can be.
+    let aligned = chunks_aligned(chunks, w);
     // Rows wider than a block are written as many short streams at once
     // (one per row of the band), which the hardware prefetchers do not
     // follow: ask for the lines a few rows ahead. (At 512 columns or
     // fewer a band is one stream; prefetching there measured slower: 512²
     // at 1/32, 0.113 → 0.122 ns/point.)
-    let prefetch = nx > BAND_BLOCK_COLUMNS;
+    // (Streamed, no line is read before its store.)
+    let prefetch = nx > BAND_BLOCK_COLUMNS && !staging.on();
+    let held_band = aligned && nx == whole * w && whole <= HELD_BAND_CHUNKS;
+    // Streamed, a band of rows of whole registers within one block is one
+    // run of registers, streamed as they are computed ([`stream_band`]);
+    // other bands are staged, a piece of up to STAGE_VALUES values (or a
+    // row) at a time.
+    let direct = staging.on() && aligned && nx == whole * w && !held_band && nx <= BAND_BLOCK_COLUMNS;
+    let staged = staging.on() && !direct;
+    let piece_rows = if staged { (STAGE_VALUES / nx).max(1) } else { usize::MAX };
     // Grid rows `first_row..end_row`; whole rows, so row r starts at
     // (r − first_row) · nx in `out`.
     let first_row = span.start / nx;
@@ -1583,33 +1674,44 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
                 v.store(&mut to[m * w..]);
             }
         }
-        let at = (r - first_row) * nx;
-        let band_out = &mut out[at..at + (y1 - y0) * nx];
-        let band_rows = (&frac1[y0..y1], &fade1[y0..y1]);
-        if aligned && nx == whole * w && whole <= HELD_BAND_CHUNKS {
-            match whole {
-                1 => write_held_band::<B, 1>(band_out, band_rows, coef),
-                2 => write_held_band::<B, 2>(band_out, band_rows, coef),
-                3 => write_held_band::<B, 3>(band_out, band_rows, coef),
-                _ => write_held_band::<B, 4>(band_out, band_rows, coef),
-            }
-        } else if aligned && prefetch {
-            write_aligned_band::<B, true>(band_out, nx, band_rows, (coef, whole));
-        } else if aligned {
-            write_aligned_band::<B, false>(band_out, nx, band_rows, (coef, whole));
-        } else {
-            // Row by row; lanes past a chunk's cell are written again by
-            // the next chunk.
-            let (coef_whole, coef_end) = coef.split_at(whole * 4 * w);
-            for ((row, &v), &s) in band_out.chunks_exact_mut(nx).zip(band_rows.0).zip(band_rows.1) {
-                let (v, s) = (B::splat(v), B::splat(s));
-                for (ch, c) in chunks[..whole].iter().zip(coef_whole.chunks_exact(4 * w)) {
-                    band_value::<B>(c, v, s).store(&mut row[ch.start..ch.start + w]);
+        let mut ya = y0;
+        while ya < y1 {
+            let yb = y1.min(ya.saturating_add(piece_rows));
+            let at = (r + (ya - y0) - first_row) * nx;
+            let n = (yb - ya) * nx;
+            let band_out = if staged { &mut staging.target(&mut out[at..])[..n] } else { &mut out[at..at + n] };
+            let band_rows = (&frac1[ya..yb], &fade1[ya..yb]);
+            if held_band {
+                match whole {
+                    1 => write_held_band::<B, 1>(band_out, band_rows, coef),
+                    2 => write_held_band::<B, 2>(band_out, band_rows, coef),
+                    3 => write_held_band::<B, 3>(band_out, band_rows, coef),
+                    _ => write_held_band::<B, 4>(band_out, band_rows, coef),
                 }
-                for (ch, c) in chunks[whole..].iter().zip(coef_end.chunks_exact(4 * w)) {
-                    emit(band_value::<B>(c, v, s), &mut row[ch.start..]);
+            } else if direct {
+                stream_band::<B>(band_out, band_rows, &coef[..whole * 4 * w]);
+            } else if aligned && prefetch {
+                write_aligned_band::<B, true>(band_out, nx, band_rows, (coef, whole));
+            } else if aligned {
+                write_aligned_band::<B, false>(band_out, nx, band_rows, (coef, whole));
+            } else {
+                // Row by row; lanes past a chunk's cell are written again by
+                // the next chunk.
+                let (coef_whole, coef_end) = coef.split_at(whole * 4 * w);
+                for ((row, &v), &s) in band_out.chunks_exact_mut(nx).zip(band_rows.0).zip(band_rows.1) {
+                    let (v, s) = (B::splat(v), B::splat(s));
+                    for (ch, c) in chunks[..whole].iter().zip(coef_whole.chunks_exact(4 * w)) {
+                        band_value::<B>(c, v, s).store(&mut row[ch.start..ch.start + w]);
+                    }
+                    for (ch, c) in chunks[whole..].iter().zip(coef_end.chunks_exact(4 * w)) {
+                        emit(band_value::<B>(c, v, s), &mut row[ch.start..]);
+                    }
                 }
             }
+            if staged {
+                staging.flush::<B>(&mut out[at..at + n]);
+            }
+            ya = yb;
         }
         r += y1 - y0;
     }
@@ -1701,6 +1803,26 @@ fn write_aligned_band<B: BatchLanes, const PREFETCH: bool>(band_out: &mut [f32],
             emit(band_value::<B>(c, v, s), &mut row[w * whole..]);
         }
     }
+}
+
+/// [`fill_bands`]' rows where they are whole registers from chunk k at
+/// column k · w and the band is streamed ([`Stores::Streamed`]): the
+/// band's rows, in order, are one run of registers ([`StreamedRun`]), so
+/// only its first and last values are stored plainly. (A run per row, with
+/// plain stores at both ends of every row, read 0.86 ns/sample against 0.57
+/// for plain stores throughout, 3D improved fast over 256³ with a build
+/// running beside both.)
+#[inline(always)]
+fn stream_band<B: BatchLanes>(band_out: &mut [f32], (frac, fade): (&[f32], &[f32]), coef: &[f32]) {
+    let w = B::WIDTH;
+    let mut run = StreamedRun::<B>::new(band_out);
+    for (&v, &s) in frac.iter().zip(fade) {
+        let (v, s) = (B::splat(v), B::splat(s));
+        for c in coef.chunks_exact(4 * w) {
+            run.push(band_value::<B>(c, v, s));
+        }
+    }
+    run.finish();
 }
 
 /// Most chunks a row of [`write_held_band`] holds: their coefficients take

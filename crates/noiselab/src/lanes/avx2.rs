@@ -249,6 +249,16 @@ impl BatchLanes for X8 {
         unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) }
     }
     #[inline(always)]
+    fn store_streamed(self, out: &mut [f32]) {
+        let out = &mut out[..8];
+        if out.as_ptr().addr().is_multiple_of(32) {
+            // SAFETY: 8 entries in bounds, on a 32-byte boundary as the store requires.
+            unsafe { _mm256_stream_ps(out.as_mut_ptr(), self.0) }
+        } else {
+            self.store(out);
+        }
+    }
+    #[inline(always)]
     fn iota() -> I8 {
         I8(unsafe { _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7) })
     }

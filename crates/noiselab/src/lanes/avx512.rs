@@ -240,6 +240,16 @@ impl BatchLanes for X16 {
         unsafe { _mm512_storeu_ps(out.as_mut_ptr(), self.0) }
     }
     #[inline(always)]
+    fn store_streamed(self, out: &mut [f32]) {
+        let out = &mut out[..16];
+        if out.as_ptr().addr().is_multiple_of(64) {
+            // SAFETY: 16 entries in bounds, on a 64-byte boundary as the store requires.
+            unsafe { _mm512_stream_ps(out.as_mut_ptr(), self.0) }
+        } else {
+            self.store(out);
+        }
+    }
+    #[inline(always)]
     fn iota() -> I16 {
         I16(unsafe { _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) })
     }

@@ -165,6 +165,12 @@ pub trait BatchLanes: Lanes<Elem = f32> {
     const LEVEL: crate::grid::SimdLevel;
     /// Write the lanes to `out[..WIDTH]`.
     fn store(self, out: &mut [f32]);
+    /// [`BatchLanes::store`] past the caches (a non-temporal store: the
+    /// line is not read in first, and no other line is evicted for it)
+    /// where `out` starts on a register-wide boundary; a plain store
+    /// elsewhere. Other threads may not see the values before
+    /// [`stream_fence`].
+    fn store_streamed(self, out: &mut [f32]);
     /// Integer lanes 0, 1, …, WIDTH − 1.
     fn iota() -> Self::Int;
     /// Write integer lanes to `out[..WIDTH]`.
@@ -353,6 +359,97 @@ pub(crate) fn prefetch_store(p: *const f32) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = p;
+}
+
+/// Copy `from` into `to` (of the same length) past the caches: the
+/// entries from `to`'s first register-wide boundary on, a register at a
+/// time through [`BatchLanes::store_streamed`]; the few before it and after
+/// the last whole register, plainly. For outputs larger than the last-level
+/// cache, where a plain store first reads its line from memory: in C on
+/// this project's AVX-512 host, 64 MiB filled at 0.49 ns a value with
+/// plain stores and 0.18 streamed (32 MiB, which the cache holds: 0.18
+/// both).
+#[inline(always)]
+pub(crate) fn stream_copy<B: BatchLanes>(from: &[f32], to: &mut [f32]) {
+    let w = B::WIDTH;
+    let n = from.len().min(to.len());
+    let head = to.as_ptr().align_offset(4 * w).min(n);
+    let body_end = head + (n - head) / w * w;
+    to[..head].copy_from_slice(&from[..head]);
+    let mut i = head;
+    while i < body_end {
+        B::from_slice(&from[i..]).store_streamed(&mut to[i..i + w]);
+        i += w;
+    }
+    to[body_end..n].copy_from_slice(&from[body_end..n]);
+}
+
+/// Registers written one after another over a run of values, stored past
+/// the caches on register-wide boundaries: each streamed store is the two
+/// registers that straddle a boundary, permuted into one, and the values
+/// before the first boundary and after the last are stored plainly. Unlike
+/// [`stream_copy`] from a staged buffer, the stores drain while the next
+/// registers are computed (in C on this project's AVX-512 host, a compute
+/// loop filling 64 MiB: 0.49 ns a value with plain stores, 0.40 staged in
+/// 16 KiB pieces, 0.31 in 4 KiB pieces, 0.26 streamed as it went; 0.19
+/// computing alone).
+pub(crate) struct StreamedRun<'a, B: BatchLanes> {
+    out: &'a mut [f32],
+    /// Values before `out`'s first register-wide boundary (0..WIDTH).
+    lead: usize,
+    /// Values pushed so far.
+    at: usize,
+    /// The register pushed last.
+    carry: B,
+    /// Lane j takes entry `j + lead` of the last register and the next.
+    idx: B::Int,
+}
+
+impl<'a, B: BatchLanes> StreamedRun<'a, B> {
+    /// A run over `out`, whose length the registers pushed must make up.
+    #[inline(always)]
+    pub(crate) fn new(out: &'a mut [f32]) -> Self {
+        let w = B::WIDTH;
+        let lead = out.as_ptr().align_offset(4 * w).min(w) % w;
+        StreamedRun { out, lead, at: 0, carry: B::cst(0.0), idx: B::iota().add(B::Int::splat(lead as i32)) }
+    }
+
+    /// The next `WIDTH` values.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, v: B) {
+        let w = B::WIDTH;
+        if self.lead == 0 {
+            v.store_streamed(&mut self.out[self.at..self.at + w]);
+        } else if self.at == 0 {
+            crate::grid::store_prefix(v, &mut self.out[..self.lead]);
+        } else {
+            let s = self.at - w + self.lead;
+            B::permute2(self.carry, v, self.idx).store_streamed(&mut self.out[s..s + w]);
+        }
+        self.carry = v;
+        self.at += w;
+    }
+
+    /// Store what the last register left past the last boundary.
+    #[inline(always)]
+    pub(crate) fn finish(self) {
+        if self.lead != 0 && self.at != 0 {
+            let s = self.at - B::WIDTH + self.lead;
+            crate::grid::store_prefix(B::permute(self.carry, self.idx), &mut self.out[s..self.at]);
+        }
+    }
+}
+
+/// Order this thread's streamed stores ([`BatchLanes::store_streamed`])
+/// before its later stores, so that a thread which sees those (a join, a
+/// release) sees the streamed values too.
+#[inline(always)]
+pub(crate) fn stream_fence() {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE, which every x86_64 CPU has; a fence reads and writes nothing.
+    unsafe {
+        core::arch::x86_64::_mm_sfence();
+    }
 }
 
 #[cfg(all(test, feature = "std", target_arch = "x86_64"))]

@@ -262,6 +262,22 @@ macro_rules! wide_lanes {
                 out[..$n].copy_from_slice(&self.0);
             }
             #[inline(always)]
+            fn store_streamed(self, out: &mut [f32]) {
+                let out = &mut out[..$n];
+                // SSE2's four-lane streaming store, which every x86_64 CPU has.
+                #[cfg(target_arch = "x86_64")]
+                if out.as_ptr().addr().is_multiple_of(16) {
+                    use core::arch::x86_64::{_mm_loadu_ps, _mm_stream_ps};
+                    for k in (0..$n).step_by(4) {
+                        // SAFETY: entries k..k + 4 are in bounds of both, and
+                        // `out`'s on a 16-byte boundary as the store requires.
+                        unsafe { _mm_stream_ps(out.as_mut_ptr().add(k), _mm_loadu_ps(self.0.as_ptr().add(k))) }
+                    }
+                    return;
+                }
+                out.copy_from_slice(&self.0);
+            }
+            #[inline(always)]
             fn iota() -> $i {
                 let mut out = [0i32; $n];
                 for k in 0..$n {

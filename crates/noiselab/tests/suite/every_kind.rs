@@ -4,7 +4,7 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Accuracy, Axes, Span, Classic, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
+use noiselab::{Accuracy, Axes, Span, Stores, Classic, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -132,11 +132,71 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
                 continue;
             }
             let len = len.min(grid.len() - start);
-            let mut out = vec![0f32; len];
-            noise.dispatch_span(level, Span { axes: &axes, start, accuracy: Accuracy::Exact }, &mut out);
-            for (k, &b) in out.iter().enumerate() {
-                let s = noise.get_f32(grid.point(start + k));
-                assert!(same(s, b), "{name} {D}D {level:?} span {start}+{len}, point {}: scalar {s:e}, batch {b:e}", start + k);
+            // Streamed stores too, which whole fills take only past 32 MiB.
+            for stores in [Stores::Cached, Stores::Streamed] {
+                let mut out = vec![0f32; len];
+                noise.dispatch_span(level, Span { axes: &axes, start, accuracy: Accuracy::Exact, stores }, &mut out);
+                for (k, &b) in out.iter().enumerate() {
+                    let s = noise.get_f32(grid.point(start + k));
+                    assert!(same(s, b), "{name} {D}D {level:?} {stores:?} span {start}+{len}, point {}: scalar {s:e}, batch {b:e}", start + k);
+                }
+            }
+        }
+    }
+}
+
+/// Streamed stores (`Stores::Streamed`, which whole fills take from 32 MiB
+/// on) give the cached fill's bits on every path that streams: batches of
+/// rows (few cells a row), rows of many cells, bands (fast, cells holding
+/// many rows; staged, or streamed from registers where chunks start at
+/// multiples of the lanes) and fast rows (cells holding few), exact and
+/// fast, at every level, into outputs at every offset from a register
+/// boundary, and write nothing outside the output.
+#[test]
+fn streamed_stores_give_the_cached_bits() {
+    let grids = [
+        Grid::new([-1.3, 0.2], [1.0 / 32.0, 1.0 / 32.0], [75, 40]),
+        Grid::new([-40.3, 0.2], [0.05, 0.09], [1300, 4]),
+        Grid::new([0.3, -1.0], [1.0 / 32.0, 0.4], [43, 9]),
+        // Chunk k at column k · lanes: fast bands stream from registers,
+        // in one block of columns and in two.
+        Grid::new([0.0, 0.3], [1.0 / 32.0, 1.0 / 32.0], [160, 40]),
+        Grid::new([0.0, 0.3], [1.0 / 32.0, 1.0 / 32.0], [544, 9]),
+    ];
+    for grid in &grids {
+        check_streamed(&Improved::new(3), grid);
+        check_streamed(&Classic::new(5), grid);
+        check_streamed(&Modified::new(7), grid);
+        check_streamed(&Value::new(2), grid);
+    }
+    let grids = [
+        Grid::new([-1.3, 0.2, 0.4], [1.0 / 32.0, 1.0 / 16.0, 0.3], [70, 20, 3]),
+        Grid::new([-20.3, 0.2, 5.0], [0.05, 0.3, 0.5], [700, 3, 2]),
+        Grid::new([0.0, 0.2, 0.4], [1.0 / 32.0, 1.0 / 16.0, 0.3], [112, 20, 2]),
+    ];
+    for grid in &grids {
+        check_streamed(&Improved::new(3), grid);
+        check_streamed(&Classic::new(0), grid);
+        check_streamed(&Modified::new(1), grid);
+    }
+    check_streamed(&Improved::new(3), &Grid::new([-1.3, 0.2, 0.4, 0.1], [1.0 / 16.0, 1.0 / 16.0, 0.3, 0.5], [40, 18, 2, 2]));
+}
+
+#[inline(never)]
+fn check_streamed<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>) {
+    let axes = Axes::of(grid);
+    let n = grid.len();
+    for level in SimdLevel::available() {
+        for accuracy in [Accuracy::Exact, Accuracy::Fast] {
+            let mut cached = vec![0f32; n];
+            noise.dispatch_span(level, Span { axes: &axes, start: 0, accuracy, stores: Stores::Cached }, &mut cached);
+            for offset in [0, 1, 3, 4, 7, 8, 15] {
+                let mut buf = vec![f32::NAN; n + 16];
+                noise.dispatch_span(level, Span { axes: &axes, start: 0, accuracy, stores: Stores::Streamed }, &mut buf[offset..offset + n]);
+                for (k, (&c, &s)) in cached.iter().zip(&buf[offset..]).enumerate() {
+                    assert_eq!(c.to_bits(), s.to_bits(), "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}, point {k}: {c:e} vs {s:e}");
+                }
+                assert!(buf[..offset].iter().chain(&buf[offset + n..]).all(|v| v.is_nan()), "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}: a store outside the output");
             }
         }
     }

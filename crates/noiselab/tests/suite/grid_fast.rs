@@ -4,7 +4,7 @@
 
 use noiselab::grid::fill_grid_at;
 use noiselab::{
-    Accuracy, Axes, Span, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise,
+    Accuracy, Axes, Span, Stores, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise,
     SimdLevel, Simplex, Value, Worley,
 };
 
@@ -151,11 +151,14 @@ fn check_spans<N: Noise<D>, const D: usize>(noise: &N, grid: Grid<D>) {
         let mut whole = vec![0f32; grid.len()];
         fill_grid_at(level, noise, &grid, &mut whole, Accuracy::Fast).unwrap();
         for (first, count) in [(0, rows), (1, 5), (3, 1), (7, rows - 7), (rows / 2 - 3, 9), (rows - 2, 2)] {
-            let mut out = vec![0f32; count * nx];
-            noise.dispatch_span(level, Span { axes: &axes, start: first * nx, accuracy: Accuracy::Fast }, &mut out);
-            let expected = &whole[first * nx..(first + count) * nx];
-            for (k, (&e, &o)) in expected.iter().zip(&out).enumerate() {
-                assert_eq!(e.to_bits(), o.to_bits(), "{D}D {level:?}, rows {first}+{count}, point {}: {e:e} vs {o:e}", first * nx + k);
+            // Streamed stores too, which whole fills take only past 32 MiB.
+            for stores in [Stores::Cached, Stores::Streamed] {
+                let mut out = vec![0f32; count * nx];
+                noise.dispatch_span(level, Span { axes: &axes, start: first * nx, accuracy: Accuracy::Fast, stores }, &mut out);
+                let expected = &whole[first * nx..(first + count) * nx];
+                for (k, (&e, &o)) in expected.iter().zip(&out).enumerate() {
+                    assert_eq!(e.to_bits(), o.to_bits(), "{D}D {level:?} {stores:?}, rows {first}+{count}, point {}: {e:e} vs {o:e}", first * nx + k);
+                }
             }
         }
     }
