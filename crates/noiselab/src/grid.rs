@@ -210,7 +210,7 @@ pub enum Stores {
 /// Fewest values for which a grid fill streams its stores
 /// ([`Stores::Streamed`]): 32 MiB. (In C on this project's AVX-512 host,
 /// plain stores filled 32 MiB at 0.18 ns a value, as streamed ones did,
-/// 40 MiB at 0.35 and 64 MiB at 0.49, against 0.17 streamed.)
+/// 40 MiB at 0.35 and 64 MiB at 0.49, against 0.16–0.18 streamed.)
 pub const STREAM_MIN_VALUES: usize = 1 << 23;
 
 /// The coordinates of a grid, axis by axis, rounded to `f32`: exactly the

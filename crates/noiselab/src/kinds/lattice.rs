@@ -1211,7 +1211,7 @@ impl<'a> Staging<'a> {
         }
     }
 
-    /// Copy the `n` staged values to `out` (`n` long) past the caches;
+    /// Copy the first `out.len()` staged values to `out` past the caches;
     /// nothing where the fill stores plainly.
     #[inline(always)]
     fn flush<B: BatchLanes>(&self, out: &mut [f32]) {

@@ -168,8 +168,8 @@ pub trait BatchLanes: Lanes<Elem = f32> {
     /// [`BatchLanes::store`] past the caches (a non-temporal store: the
     /// line is not read in first, and no other line is evicted for it)
     /// where `out` starts on a register-wide boundary; a plain store
-    /// elsewhere. Other threads may not see the values before
-    /// [`stream_fence`].
+    /// elsewhere. Other threads may not see the values before a store
+    /// fence (the grid fills end each span that streamed with one).
     fn store_streamed(self, out: &mut [f32]);
     /// Integer lanes 0, 1, …, WIDTH − 1.
     fn iota() -> Self::Int;
