@@ -185,8 +185,10 @@ pub enum Accuracy {
     /// them evaluate each grid row as a polynomial per lattice cell (or,
     /// where cells hold several rows, each column of a cell's rows): within
     /// 1e-6 of [`Accuracy::Exact`] (absolute, tested), and faster. Where a
-    /// row's cells are narrower than a SIMD register's worth of points (a
-    /// fractal's fine octaves), and for other kinds, the fill is exact.
+    /// row's cells are narrower than a SIMD register's worth of points and
+    /// hold few rows (fewer than four; at the AVX-512 level, fewer than
+    /// eight where rows are over 512 points: a fractal's fine octaves), and
+    /// for other kinds, the fill is exact.
     Fast,
 }
 

@@ -889,7 +889,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     // Fast, whole rows, and cells that hold several rows along axis 1:
     // down the columns, a band of rows at a time ([`fill_bands`]).
     // (Axis 1 by row, as axis 0 by column, kept for the bands.)
-    let bands = fast && D >= 2 && whole_rows && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1));
+    let bands = fast && D >= 2 && whole_rows && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1), BAND_ROWS);
     // Whole rows of long runs, exact, with few enough lattice points that a
     // batch's bound records stay in L1 beside the rows: rows in batches,
     // each point's records bound for a batch at once ([`fill_row_batches`]).
@@ -987,9 +987,9 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         }
         let near = reach == Some(Reach::Near);
         // Fast, with cells narrower than the lanes but holding several rows
-        // (2D at 1/4 on AVX2): down the columns too, each lane reading its
-        // own cell's coefficients.
-        if near && span.accuracy == Accuracy::Fast && D >= 2 && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1)) {
+        // (2D at 1/4; on AVX-512, at 1/8 where rows are wide): down the
+        // columns too, each lane reading its own cell's coefficients.
+        if near && span.accuracy == Accuracy::Fast && D >= 2 && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1), narrow_band_rows::<B>(nx)) {
             chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk { start: k * w, end: (k * w + w).min(cols), cell: a.first }));
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
             // Back to the kept vector, which the bands take: held here, it
@@ -1540,17 +1540,45 @@ impl<B: BatchLanes, const D: usize> FineRow<'_, B, D> {
 /// points do).
 const BAND_ROWS: usize = 4;
 
-/// Whether cells along axis 1 hold [`BAND_ROWS`] rows or more on average,
+/// Fewest rows of one cell along axis 1, on average, for which
+/// [`fill_bands`] pays where cells are narrower than a register (each lane
+/// reading its own cell's coefficients) in rows of `nx` columns:
+/// [`BAND_ROWS`], but half a register's lanes (8 on AVX-512) where rows
+/// are wider than a block of columns. Against sixteen lanes, which read a
+/// chunk's cells for the exact rows with one permute a field, a wide
+/// band's per-cell work (half-blends, then each chunk's coefficients,
+/// across the whole row) no longer pays at four rows. 2D improved fast at
+/// 1/4 (cells 4 × 4 points), 32 rows, AVX-512, ns/point, three alternating
+/// probe runs each (medians), bands against exact rows: 32 columns
+/// 1.00 against 1.24–1.26, 64: 0.63–0.64 against 0.88, 256: 0.47–0.49
+/// against 0.54, 512: 0.51 against 0.49–0.50, 1024: 0.84–0.88 against
+/// 0.50, 2048: 0.89–0.92 against 0.57–0.70. Over 2048 columns with 8
+/// rows a cell the two were level (cells 4 × 8), or the bands ahead
+/// (8 × 8); on AVX2 the bands were not behind at four rows (2048
+/// columns, minima 0.85–0.90 against 0.89–1.11). 6-octave fBm fast over 2048² at 1/32, whose
+/// fourth octave is at 1/4, medians of five alternating runs: 3.91–4.10 →
+/// 3.43–3.82.
+#[inline(always)]
+fn narrow_band_rows<B: BatchLanes>(nx: usize) -> usize {
+    if nx > BAND_BLOCK_COLUMNS {
+        BAND_ROWS.max(B::WIDTH / 2)
+    } else {
+        BAND_ROWS
+    }
+}
+
+/// Whether cells along axis 1 hold `min_rows` rows or more on average,
 /// for [`fill_bands`]; axis 1 split into `cell1, frac1, fade1` by the way.
 #[inline(always)]
 fn tall_cells<K: Lattice<D>, B: BatchLanes, const D: usize>(
     kind: &K,
     span: &Span<'_, D>,
     (cell1, frac1, fade1): (&mut Vec<i32>, &mut Vec<f32>, &mut Vec<f32>),
+    min_rows: usize,
 ) -> bool {
     let ny = span.axes.size(1);
     split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(B::WIDTH) * B::WIDTH);
-    ny >= BAND_ROWS * run_count(&cell1[..ny])
+    ny >= min_rows * run_count(&cell1[..ny])
 }
 
 /// [`Accuracy::Fast`]'s fill of whole rows where cells hold several rows

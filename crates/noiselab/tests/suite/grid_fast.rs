@@ -41,6 +41,11 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         // (139 whole chunks of 8, then 4 columns) and AVX-512 (69 of 16,
         // then 12).
         grids.push(Grid::new([2.0; D], [1.0 / 32.0; D], size(1116, 8)));
+        // Rows over 512 columns of cells narrower than the lanes: five rows
+        // a cell (bands on AVX2, exact rows on AVX-512) and ten (bands on
+        // both).
+        grids.push(Grid::new([0.13; D], core::array::from_fn(|d| [0.25, 0.2][d]), size(530, 10)));
+        grids.push(Grid::new([0.13; D], core::array::from_fn(|d| [0.25, 0.1][d]), size(530, 20)));
     }
     grids
 }
@@ -137,8 +142,10 @@ fn fast_spans_of_whole_rows_equal_the_whole_grid() {
     check_spans(&Improved::new(4), Grid::new([-0.4, 2.1], [1.0 / 32.0, 1.0 / 24.0], [50, 70]));
     check_spans(&Improved::new(4), Grid::new([0.3, -1.0, 0.45], [1.0 / 32.0, 1.0 / 20.0, 0.3], [43, 30, 4]));
     check_spans(&Improved::new(9), Grid::new([5.5, 0.0, -2.0, 0.1], [0.05, 0.04, 0.5, 0.7], [33, 26, 2, 2]));
-    // Cells narrower than the lanes (AVX2, AVX-512), five rows each.
+    // Cells narrower than the lanes (AVX2, AVX-512), five rows each; in
+    // rows over 512 columns, ten (which AVX-512 takes in bands from eight).
     check_spans(&Improved::new(4), Grid::new([0.2, -0.7], [0.25, 0.2], [61, 50]));
+    check_spans(&Improved::new(4), Grid::new([0.2, -0.7], [0.25, 0.1], [530, 50]));
     check_spans(&Value::new(6), Grid::new([0.1, 0.3, -0.2], [0.25, 0.2, 0.5], [45, 33, 3]));
 }
 
