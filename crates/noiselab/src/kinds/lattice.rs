@@ -1555,9 +1555,9 @@ const BAND_ROWS: usize = 4;
 /// 0.50, 2048: 0.89–0.92 against 0.57–0.70. Over 2048 columns with 8
 /// rows a cell the two were level (cells 4 × 8), or the bands ahead
 /// (8 × 8); on AVX2 the bands were not behind at four rows (2048
-/// columns, minima 0.85–0.90 against 0.89–1.11). 6-octave fBm fast over 2048² at 1/32, whose
-/// fourth octave is at 1/4, medians of five alternating runs: 3.91–4.10 →
-/// 3.43–3.82.
+/// columns, minima 0.85–0.90 against 0.89–1.11). 6-octave fBm fast over
+/// 2048² at 1/32, whose fourth octave is at 1/4, medians of five
+/// alternating runs: 3.94–4.57 → 3.48–4.24 (32² tiles of it: no change).
 #[inline(always)]
 fn narrow_band_rows<B: BatchLanes>(nx: usize) -> usize {
     if nx > BAND_BLOCK_COLUMNS {
