@@ -188,7 +188,9 @@ pub enum Accuracy {
     /// row's cells are narrower than a SIMD register's worth of points and
     /// hold few rows (fewer than four; at the AVX-512 level, fewer than
     /// eight where rows are over 512 points: a fractal's fine octaves), and
-    /// for other kinds, the fill is exact.
+    /// for other kinds, the fill is exact. Since the register's width
+    /// decides, fast values may differ between instruction-set levels,
+    /// each within the bound.
     Fast,
 }
 
