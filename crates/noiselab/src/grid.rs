@@ -205,9 +205,10 @@ pub enum Stores {
     /// than the last-level cache ([`STREAM_MIN_VALUES`] or more), where a
     /// plain store first reads its line from memory. The lattice kinds'
     /// fills of whole rows of long runs of one cell, up to 1024 values wide
-    /// (classic, improved, modified: exact rows and fast bands), take it;
-    /// wider rows, finer cells, other kinds and value noise's plane blends
-    /// store plainly.
+    /// (classic, improved, modified: exact rows and fast bands), take it,
+    /// as do value noise's plane blends where the rows start at one offset
+    /// from a register boundary (rows of a multiple of the register's
+    /// lanes); wider rows, finer cells and other kinds store plainly.
     Streamed,
 }
 

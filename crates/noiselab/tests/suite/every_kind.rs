@@ -149,9 +149,10 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
 /// on) give the cached fill's bits on every path that streams: batches of
 /// rows (few cells a row), rows of many cells, bands (fast, cells holding
 /// many rows; staged, or streamed from registers where chunks start at
-/// multiples of the lanes) and fast rows (cells holding few), exact and
-/// fast, at every level, into outputs at every offset from a register
-/// boundary, and write nothing outside the output.
+/// multiples of the lanes), value noise's plane blends and fast rows
+/// (cells holding few), exact and fast, at every level, into outputs at
+/// every offset from a register boundary, and write nothing outside the
+/// output.
 #[test]
 fn streamed_stores_give_the_cached_bits() {
     let grids = [
@@ -178,6 +179,7 @@ fn streamed_stores_give_the_cached_bits() {
         check_streamed(&Improved::new(3), grid);
         check_streamed(&Classic::new(0), grid);
         check_streamed(&Modified::new(1), grid);
+        check_streamed(&Value::new(4), grid);
     }
     check_streamed(&Improved::new(3), &Grid::new([-1.3, 0.2, 0.4, 0.1], [1.0 / 16.0, 1.0 / 16.0, 0.3, 0.5], [40, 18, 2, 2]));
 }
@@ -198,6 +200,38 @@ fn check_streamed<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>) {
                 }
                 assert!(buf[..offset].iter().chain(&buf[offset + n..]).all(|v| v.is_nan()), "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}: a store outside the output");
             }
+        }
+    }
+}
+
+/// Value noise's plane blends store whole registers of memory from the
+/// first column on a register boundary (one chunk before it), so each
+/// offset of the output from a boundary splits its rows differently:
+/// every offset, at every level, gives `get_f32`'s bits and writes nothing
+/// outside the output. Rows of a multiple of the lanes share their offset;
+/// the others fall back to chunks from the first column.
+#[test]
+fn plane_blends_at_every_output_offset_give_the_point_bits() {
+    check_offsets(&Value::new(2), &Grid::new([0.0, 0.3], [1.0 / 32.0, 1.0 / 16.0], [96, 33]));
+    check_offsets(&Value::new(2), &Grid::new([-1.3, 0.2], [1.0 / 32.0, 1.0 / 32.0], [75, 40]));
+    check_offsets(&Value::new(5), &Grid::new([-7.1, 0.2], [1.0 / 20.0, 1.0 / 8.0], [48, 20]));
+    check_offsets(&Value::new(7), &Grid::new([0.4, 0.2, -0.3], [1.0 / 32.0, 1.0 / 16.0, 0.25], [64, 20, 3]));
+    check_offsets(&Value::new(7), &Grid::new([0.4, 0.2, -0.3], [1.0 / 32.0, 1.0 / 16.0, 0.25], [37, 20, 2]));
+}
+
+#[inline(never)]
+fn check_offsets<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>) {
+    let n = grid.len();
+    let want: Vec<f32> = (0..n).map(|i| noise.get_f32(grid.point(i))).collect();
+    for level in SimdLevel::available() {
+        for offset in 0..16 {
+            let mut buf = vec![f32::NAN; n + 32];
+            let start = buf.as_ptr().align_offset(64) + offset;
+            fill_grid_at(level, noise, grid, &mut buf[start..start + n], Accuracy::Exact).unwrap();
+            for (k, (&w, &v)) in want.iter().zip(&buf[start..]).enumerate() {
+                assert_eq!(w.to_bits(), v.to_bits(), "{D}D {grid:?} {level:?} offset {offset}, point {k}: {w:e} vs {v:e}");
+            }
+            assert!(buf[..start].iter().chain(&buf[start + n..]).all(|v| v.is_nan()), "{D}D {grid:?} {level:?} offset {offset}: a store outside the output");
         }
     }
 }
