@@ -303,6 +303,12 @@ impl<const D: usize> Axes<D> {
         self.coords[..self.ends[D - 1]].iter().all(|c| c.is_finite())
     }
 
+    /// Whether every coordinate of every axis lies within `±limit` (so is
+    /// finite).
+    pub(crate) fn all_within(&self, limit: f32) -> bool {
+        self.coords[..self.ends[D - 1]].iter().all(|c| c.abs() <= limit)
+    }
+
     /// Whether every coordinate of every axis is an integer (finite).
     pub(crate) fn all_integers(&self) -> bool {
         self.coords[..self.ends[D - 1]].iter().all(|&c| c.is_finite() && c == crate::lanes::math::floor32(c))

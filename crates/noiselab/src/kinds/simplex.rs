@@ -46,16 +46,26 @@ const GRAD4: [[i32; 32]; 4] = [
 pub struct Simplex {
     perm: Permutation,
     /// Gustavson's `permMod12`: `p[i] % 12`.
-    mod12: Arc<Table256>,
+    mod12: Arc<GradientIndices>,
     seed: u32,
+}
+
+/// Gustavson's `permMod12`, for lane lookups and for runs.
+#[derive(Debug)]
+struct GradientIndices {
+    lanes: Table256,
+    /// The entries twice over: a run of four from any start reads
+    /// without wrapping.
+    doubled: [u8; 512],
 }
 
 impl Simplex {
     /// Simplex noise with the permutation for `seed` (0 = reference).
     pub fn new(seed: u32) -> Self {
         let perm = Permutation::new(seed);
-        let mod12 = Arc::new(Table256(perm.entries().0.map(|p| p % 12)));
-        Simplex { perm, mod12, seed }
+        let lanes = Table256(perm.entries().0.map(|p| p % 12));
+        let doubled = core::array::from_fn(|i| lanes.0[i % 256]);
+        Simplex { perm, mod12: Arc::new(GradientIndices { lanes, doubled }), seed }
     }
 
     /// The seed.
@@ -63,10 +73,31 @@ impl Simplex {
         self.seed
     }
 
+    /// The gradient indices of corners `i0`, `i0 + 1`, `i0 + 2` (and
+    /// `i0 + 3`) of a row whose hash so far is `row` (`perm[j + …]`): the
+    /// reference's `permMod12[i + row]` at consecutive `i` is a run of the
+    /// table, one read where the lanes would hash each corner.
+    #[inline(always)]
+    fn run(&self, i0: i32, row: i32) -> &[u8] {
+        let from = (i0 + row) as usize & 255;
+        &self.mod12.doubled[from..from + 4]
+    }
+
+    /// 2D: the gradient indices of corners `(i0 + a, j0 + b)`, `a` from 0
+    /// to 3 and `b` from 0 to 2, at entry `4b + a` (12 to 15 unused).
+    #[inline(always)]
+    fn corner_runs(&self, i0: i32, j0: i32) -> [u8; 16] {
+        let mut runs = [0u8; 16];
+        for (b, run) in runs.chunks_exact_mut(4).take(3).enumerate() {
+            run.copy_from_slice(self.run(i0, self.perm.at(j0 + b as i32)));
+        }
+        runs
+    }
+
     /// `permMod12[i]`, for `0 ≤ i < 512`.
     #[inline(always)]
     fn gradient_index<I: IntLanes>(&self, i: I) -> I {
-        I::lookup256(&self.mod12, i)
+        I::lookup256(&self.mod12.lanes, i)
     }
 
     /// `grad3[gi]`.
@@ -149,7 +180,9 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
         for c in 0..C {
             let (t, dot) = self.falloff_and_dot(c);
             let t2 = t * t;
-            let n = L::select(t.lt(L::cst(0.0)), L::cst(0.0), t2 * t2 * dot);
+            // `t` is never NaN (the offsets are not), so `t ≥ 0` is
+            // `!(t < 0)`: the same select, without negating the mask.
+            let n = L::select(t.ge(L::cst(0.0)), t2 * t2 * dot, L::cst(0.0));
             sum = if c == 0 { n } else { sum + n };
         }
         L::cst(self.scale) * sum
@@ -185,28 +218,45 @@ impl<L: Lanes, const D: usize, const C: usize> Corners<L, D, C> {
 /// `None` where some lane is not in lane 0's cell or the next on an axis.
 #[inline(always)]
 fn chunk_cells<L: Lanes, const D: usize>(cells: [L::Int; D]) -> Option<([i32; D], [L::Int; D])> {
-    let (zero, one) = (L::Int::splat(0), L::Int::splat(1));
-    let (mut first, mut d) = ([0i32; D], [zero; D]);
-    let mut far = zero.lt(zero);
+    let mut first = [0i32; D];
     for a in 0..D {
         first[a] = cells[a].lane(0);
-        d[a] = cells[a].sub(L::Int::splat(first[a]));
-        far = far | d[a].lt(zero) | one.lt(d[a]);
+    }
+    Some((first, cells_from::<L, D>(cells, first, [1; D])?))
+}
+
+/// Each lane's cells less `origin`, or `None` where some lane's are not
+/// within `reach` of it (0 to `reach[a]` on axis `a`).
+#[inline(always)]
+fn cells_from<L: Lanes, const D: usize>(cells: [L::Int; D], origin: [i32; D], reach: [i32; D]) -> Option<[L::Int; D]> {
+    let zero = L::Int::splat(0);
+    let mut d = [zero; D];
+    let mut far = zero.lt(zero);
+    for a in 0..D {
+        d[a] = cells[a].sub(L::Int::splat(origin[a]));
+        far = far | d[a].lt(zero) | L::Int::splat(reach[a]).lt(d[a]);
     }
     if L::any(far) {
         return None;
     }
-    Some((first, d))
+    Some(d)
 }
 
-/// Offsets `o` (each 0 to 2) as an entry of a 3 × 3 × 3 chunk table, `9a + 3b + c`.
+/// Offsets `o` (each 0 to 2) as an entry of a 3 × 3 × 3 chunk table,
+/// `a + 3b + 9c`.
 #[inline(always)]
 fn table_entry3<I: IntLanes>(o: [I; 3]) -> I {
-    let (a, b) = (o[0], o[1]);
-    a.shl(3).add(a).add(b.shl(1).add(b)).add(o[2])
+    let (b, c) = (o[1], o[2]);
+    o[0].add(b.shl(1).add(b)).add(c.shl(3).add(c))
 }
 
-/// A 2D chunk table's entry `e` holds the gradient of corner
+/// A bound on coordinates below which a cell's integer and float corners
+/// come from one conversion each and sums of up to three of them are
+/// exact (so equal the reference's integer sums converted): skewed, they
+/// stay within ±2²², and three of those sum below 2²⁴.
+const SMALL: f32 = (1 << 21) as f32;
+
+/// With eight lanes, a 2D chunk table's entry `e` holds the gradient of corner
 /// `(i0 + TABLE2_A[e], j0 + TABLE2_B[e])`, `(i0, j0)` lane 0's cell. Entries
 /// 0 to 7 serve corners 0 and 2, by the lane's cell offset `2·di + dj`
 /// (corner 2 from entry 4); entries 8 to 15 serve corner 1 (from entry 12
@@ -216,22 +266,25 @@ const TABLE2_A: [i32; 16] = [0, 0, 1, 1, 1, 1, 2, 2, 1, 1, 2, 2, 0, 0, 1, 1];
 const TABLE2_B: [i32; 16] = [0, 1, 0, 1, 1, 2, 1, 2, 0, 1, 0, 1, 1, 2, 1, 2];
 
 /// The last chunk table ([`ChunkTables::gradients2`],
-/// [`ChunkTables::gradient_indices3`]) and lane 0's cell it was made for
-/// (2D: third coordinate 0): along a grid row, neighbouring chunks mostly
-/// start in the same cell and share it.
+/// [`ChunkTables::gradient_indices3`]) and the cell it was made from (lane
+/// 0's; 2D: third coordinate 0), which later chunks along a grid row share
+/// while their lanes lie within its reach.
 struct ChunkTable {
     cell: Option<[i32; 3]>,
+    /// Whether the grid's coordinates all lie within ±[`SMALL`].
+    small: bool,
     /// 3D: the gradient indices.
     entries: [i32; 32],
-    /// 2D: by axis, the gradients' components at the entries of
+    /// 2D: by axis, the gradients' components: sixteen lanes, at entry
+    /// `4b + a` for corner `(i0 + a, j0 + b)`; narrower, at the entries of
     /// [`TABLE2_A`], in two halves of eight.
     gradients: [[[f32; 8]; 2]; 2],
 }
 
 impl ChunkTable {
     #[inline(always)]
-    fn empty() -> Self {
-        ChunkTable { cell: None, entries: [0; 32], gradients: [[[0.0; 8]; 2]; 2] }
+    fn empty(small: bool) -> Self {
+        ChunkTable { cell: None, small, entries: [0; 32], gradients: [[[0.0; 8]; 2]; 2] }
     }
 }
 
@@ -242,9 +295,11 @@ trait ChunkTables<L: Lanes> {
     /// 2D: the three corners' gradients for lanes in cells `cell`, corner
     /// 1 by `upper`.
     fn gradients2(&mut self, noise: &Simplex, cell: [L::Int; 2], upper: L::Mask) -> Option<[[L; 2]; 3]>;
+    /// Whether every coordinate is known to lie within ±[`SMALL`].
+    fn small(&self) -> bool;
     /// 3D: the four corners' gradient indices for lanes in cells `cell`,
-    /// corners 1 and 2 at offsets `steps`.
-    fn gradient_indices3(&mut self, noise: &Simplex, cell: [L::Int; 3], steps: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]>;
+    /// corners 1 and 2 a step along the axes set in `steps`.
+    fn gradient_indices3(&mut self, noise: &Simplex, cell: [L::Int; 3], steps: [[L::Mask; 3]; 2]) -> Option<[L::Int; 4]>;
 }
 
 /// No chunk tables: every lane hashes its own corners.
@@ -256,7 +311,11 @@ impl<L: Lanes> ChunkTables<L> for NoTables {
         None
     }
     #[inline(always)]
-    fn gradient_indices3(&mut self, _: &Simplex, _: [L::Int; 3], _: [[L::Int; 3]; 2]) -> Option<[L::Int; 4]> {
+    fn small(&self) -> bool {
+        false
+    }
+    #[inline(always)]
+    fn gradient_indices3(&mut self, _: &Simplex, _: [L::Int; 3], _: [[L::Mask; 3]; 2]) -> Option<[L::Int; 4]> {
         None
     }
 }
@@ -268,44 +327,74 @@ impl<L: Lanes> ChunkTables<L> for NoTables {
 /// lane on AVX2 and the baseline, a chain of byte permutes on AVX-512).
 /// `None` where the lanes spread further.
 impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
-    /// The nine corners cells `(i0, j0)` to `(i0 + 1, j0 + 1)` reach, at
-    /// the entries of [`TABLE2_A`]; each lane's gradient component is then
-    /// one permute ([`Lanes::lookup8`]), where five table lookups and six
-    /// permutes were.
+    #[inline(always)]
+    fn small(&self) -> bool {
+        self.small
+    }
+
+    /// The nine corners cells `(i0, j0)` to `(i0 + 1, j0 + 1)` reach; each
+    /// lane's gradient component is then one permute, where five table
+    /// lookups and six permutes were.
     #[inline(always)]
     fn gradients2(&mut self, noise: &Simplex, cell: [B::Int; 2], upper: B::Mask) -> Option<[[B; 2]; 3]> {
+        if B::WIDTH == 16 {
+            // One register per axis, corner (i0 + a, j0 + b) at entry 4b + a
+            // for `a` up to 3: the table serves lanes up to two cells past
+            // its origin along a row, so along a row of 2048 at 1/32 the
+            // chunks make one every third or fourth, where they made one
+            // each.
+            let reach = [2, 1];
+            let held = match self.cell {
+                Some([i0, j0, _]) => cells_from::<B, 2>(cell, [i0, j0], reach),
+                None => None,
+            };
+            let [di, dj] = match held {
+                Some(d) => d,
+                None => {
+                    let origin = [cell[0].lane(0), cell[1].lane(0)];
+                    let d = cells_from::<B, 2>(cell, origin, reach)?;
+                    let gi = B::load_u8(&noise.corner_runs(origin[0] & 255, origin[1] & 255));
+                    B::lookup16(&GRAD3[0], gi).store(self.gradients[0].as_flattened_mut());
+                    B::lookup16(&GRAD3[1], gi).store(self.gradients[1].as_flattened_mut());
+                    self.cell = Some([origin[0], origin[1], 0]);
+                    d
+                }
+            };
+            let [x, y] = &self.gradients;
+            let (x, y) = (B::from_slice(x.as_flattened()), B::from_slice(y.as_flattened()));
+            let e0 = dj.shl(2).add(di);
+            // Corner 1 is (1, 0) above the diagonal, else (0, 1).
+            let e1 = e0.add(B::Int::select(upper, B::Int::splat(1), B::Int::splat(4)));
+            let e2 = e0.add_c(5);
+            return Some([
+                [B::permute(x, e0), B::permute(y, e0)],
+                [B::permute(x, e1), B::permute(y, e1)],
+                [B::permute(x, e2), B::permute(y, e2)],
+            ]);
+        }
         let ([i0, j0], [di, dj]) = chunk_cells::<B, 2>(cell)?;
-        if self.cell != Some([i0, j0, 0]) {
-            if B::WIDTH == TABLE2_A.len() {
-                // One lane per entry, hashed as the lanes hash: two lookups
-                // for the table, where one lane would take twelve.
-                let (a, b) = (B::load_int(&TABLE2_A), B::load_int(&TABLE2_B));
-                let gi = noise.gradient_index(a.add_c(i0).add(noise.perm.at(b.add_c(j0))));
-                for (axis, g) in self.gradients.iter_mut().enumerate() {
-                    B::lookup16(&GRAD3[axis], gi).store(g.as_flattened_mut());
-                }
-            } else {
-                // Each of the nine corners once, on one lane.
-                let mut corner = [[[0f32; 2]; 3]; 3];
-                for b in 0..3 {
-                    let pj = noise.perm.at(j0 + b);
-                    for a in 0..3 {
-                        corner[a as usize][b as usize] = Simplex::grad3::<f32, 2>(noise.gradient_index(i0 + a + pj));
-                    }
-                }
-                for e in 0..TABLE2_A.len() {
-                    let [x, y] = corner[TABLE2_A[e] as usize][TABLE2_B[e] as usize];
-                    self.gradients[0][e / 8][e % 8] = x;
-                    self.gradients[1][e / 8][e % 8] = y;
-                }
+        let (i0, j0) = (i0 & 255, j0 & 255);
+        let renew = self.cell != Some([i0, j0, 0]);
+        self.cell = Some([i0, j0, 0]);
+        let [x, y] = &mut self.gradients;
+        // Narrower registers: two halves of eight per axis, at the entries
+        // of [`TABLE2_A`], so that each lookup is one permute of eight.
+        if renew {
+            let runs = noise.corner_runs(i0, j0);
+            let mut entries = [0u8; 16];
+            for (e, entry) in entries.iter_mut().enumerate() {
+                *entry = runs[(4 * TABLE2_B[e] + TABLE2_A[e]) as usize];
             }
-            self.cell = Some([i0, j0, 0]);
+            for (half, indices) in entries.chunks_exact(8).enumerate() {
+                let gi = B::load_u8(indices);
+                B::lookup16(&GRAD3[0], gi).store(&mut x[half]);
+                B::lookup16(&GRAD3[1], gi).store(&mut y[half]);
+            }
         }
         let e0 = di.shl(1).add(dj);
         // Corner 1 is (1, 0) above the diagonal, else (0, 1).
         let e1 = e0.add(B::Int::select(upper, B::Int::splat(0), B::Int::splat(4)));
         let e2 = e0.add_c(4);
-        let [x, y] = &self.gradients;
         Some([
             [B::lookup8(&x[0], e0), B::lookup8(&y[0], e0)],
             [B::lookup8(&x[1], e1), B::lookup8(&y[1], e1)],
@@ -314,25 +403,38 @@ impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
     }
 
     /// The 27 corners cells `c0` to `c0 + (1, 1, 1)` reach, entry
-    /// `9a + 3b + c` for corner `c0 + (a, b, c)` (39 lookups per chunk
-    /// instead of ten per lane); each lane's four corners read from it.
+    /// `a + 3b + 9c` for corner `c0 + (a, b, c)` (twelve lookups and nine
+    /// runs per table, where each lane would take ten lookups); each lane's
+    /// four corners read from it.
     #[inline(always)]
-    fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Int; 3]; 2]) -> Option<[B::Int; 4]> {
+    fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Mask; 3]; 2]) -> Option<[B::Int; 4]> {
         let (c0, d) = chunk_cells::<B, 3>(cell)?;
+        let c0 = [c0[0] & 255, c0[1] & 255, c0[2] & 255];
         if self.cell != Some(c0) {
+            // Nine runs of three (written four at a time, each over the
+            // last one's spare entry).
+            let mut runs = [0u8; 32];
             for c in 0..3 {
                 let pk = noise.perm.at(c0[2] + c);
                 for b in 0..3 {
-                    for a in 0..3 {
-                        self.entries[(9 * a + 3 * b + c) as usize] = noise.hash3([c0[0], c0[1]], [a, b], pk);
-                    }
+                    let at = (9 * c + 3 * b) as usize;
+                    runs[at..at + 4].copy_from_slice(noise.run(c0[0], noise.perm.at(c0[1] + b + pk)));
                 }
+            }
+            for (indices, entries) in runs.chunks_exact(B::WIDTH).zip(self.entries.chunks_exact_mut(B::WIDTH)) {
+                B::store_int(B::load_u8(indices), entries);
             }
             self.cell = Some(c0);
         }
         let e0 = table_entry3(d);
-        let mut gi = [B::Int::splat(0); 4];
-        for (g, e) in gi.iter_mut().zip([e0, e0.add(table_entry3(steps[0])), e0.add(table_entry3(steps[1])), e0.add_c(13)]) {
+        let splat = B::Int::splat;
+        // Corner 1 steps along one axis: entry 1, 3 or 9 further; corner 2
+        // along all but one: 13 less that one's.
+        let [[i1, j1, _], [i2, j2, _]] = steps;
+        let e1 = e0.add(B::Int::select(i1, splat(1), B::Int::select(j1, splat(3), splat(9))));
+        let e2 = e0.add(B::Int::select(i2, B::Int::select(j2, splat(4), splat(10)), splat(12)));
+        let mut gi = [splat(0); 4];
+        for (g, e) in gi.iter_mut().zip([e0, e1, e2, e0.add_c(13)]) {
             *g = B::Int::lookup32(&self.entries, e);
         }
         Some(gi)
@@ -373,27 +475,37 @@ impl Simplex {
         let f2 = L::cst(0.5 * (3f64.sqrt() - 1.0));
         let g2 = L::cst((3.0 - 3f64.sqrt()) / 6.0);
         let s = (xin + yin) * f2;
-        let i = (xin + s).floor().to_int_wrapping();
-        let j = (yin + s).floor().to_int_wrapping();
-        let t = L::from_int(i.add(j)) * g2;
-        let x0 = xin - (L::from_int(i) - t);
-        let y0 = yin - (L::from_int(j) - t);
+        let (xs, ys) = (xin + s, yin + s);
+        // The cell, its corner and that corner's skew, `(i + j)·G2`.
+        let (i, j, fi, fj, t) = if tables.small() {
+            // Within ±SMALL the cell is one conversion (rounding down) per
+            // axis, and the float sum i + j is exact, as its conversion is.
+            let (i, j) = (xs.floor_to_int(), ys.floor_to_int());
+            let (fi, fj) = (L::from_int(i), L::from_int(j));
+            (i, j, fi, fj, (fi + fj) * g2)
+        } else {
+            let (i, j) = (xs.floor().to_int_wrapping(), ys.floor().to_int_wrapping());
+            (i, j, L::from_int(i), L::from_int(j), L::from_int(i.add(j)) * g2)
+        };
+        let x0 = xin - (fi - t);
+        let y0 = yin - (fj - t);
         let upper = x0.gt(y0);
         let i1 = one_if::<L>(upper);
         let x1 = minus_one_if(x0, upper) + g2;
         let y1 = minus_one_if(y0, !upper) + g2;
         let x2 = x0 - L::cst(1.0) + L::cst(2.0) * g2;
         let y2 = y0 - L::cst(1.0) + L::cst(2.0) * g2;
-        let (ii, jj) = (i.and_c(255), j.and_c(255));
-        let g = match tables.gradients2(self, [ii, jj], upper) {
+        // The reference's `i & 255` and `j & 255` are left to the lookups,
+        // which read an index's low byte.
+        let g = match tables.gradients2(self, [i, j], upper) {
             Some(g) => g,
             None => {
-                // perm[jj + j1] is perm[jj] or perm[jj + 1], which corners 0
+                // perm[j + j1] is perm[j] or perm[j + 1], which corners 0
                 // and 2 look up anyway: a select instead of a third lookup.
-                let (p0, p1) = (self.perm.at(jj), self.perm.at(jj.add_c(1)));
-                let gi0 = self.gradient_index(ii.add(p0));
-                let gi1 = self.gradient_index(ii.add(i1).add(L::Int::select(upper, p0, p1)));
-                let gi2 = self.gradient_index(ii.add_c(1).add(p1));
+                let (p0, p1) = (self.perm.at(j), self.perm.at(j.add_c(1)));
+                let gi0 = self.gradient_index(i.add(p0));
+                let gi1 = self.gradient_index(i.add(i1).add(L::Int::select(upper, p0, p1)));
+                let gi2 = self.gradient_index(i.add_c(1).add(p1));
                 [Self::grad3(gi0), Self::grad3(gi1), Self::grad3(gi2)]
             }
         };
@@ -405,33 +517,46 @@ impl Simplex {
         let f3 = L::cst(1.0 / 3.0);
         let g3 = L::cst(1.0 / 6.0);
         let s = (xin + yin + zin) * f3;
-        let i = (xin + s).floor().to_int_wrapping();
-        let j = (yin + s).floor().to_int_wrapping();
-        let k = (zin + s).floor().to_int_wrapping();
-        let t = L::from_int(i.add(j).add(k)) * g3;
-        let x0 = xin - (L::from_int(i) - t);
-        let y0 = yin - (L::from_int(j) - t);
-        let z0 = zin - (L::from_int(k) - t);
+        let (xs, ys, zs) = (xin + s, yin + s, zin + s);
+        // The cell, its corner and that corner's skew, `(i + j + k)·G3`,
+        // as in 2D (`corners2`).
+        let ([i, j, k], [fi, fj, fk], t) = if tables.small() {
+            let (i, j, k) = (xs.floor_to_int(), ys.floor_to_int(), zs.floor_to_int());
+            let (fi, fj, fk) = (L::from_int(i), L::from_int(j), L::from_int(k));
+            ([i, j, k], [fi, fj, fk], (fi + fj + fk) * g3)
+        } else {
+            let (i, j, k) = (xs.floor().to_int_wrapping(), ys.floor().to_int_wrapping(), zs.floor().to_int_wrapping());
+            ([i, j, k], [L::from_int(i), L::from_int(j), L::from_int(k)], L::from_int(i.add(j).add(k)) * g3)
+        };
+        let x0 = xin - (fi - t);
+        let y0 = yin - (fj - t);
+        let z0 = zin - (fk - t);
         // The reference's if/else ladder (with its `>=` tie rules) as masks.
+        // The reference's if/else ladder (with its `>=` tie rules) as masks:
+        // corner 1 steps along the largest axis, corner 2 along all but the
+        // smallest (the ladder's six cases, ties included, since `>=` is
+        // transitive where nothing is NaN; a NaN point's value is NaN).
         let (xy, yz, xz) = (x0.ge(y0), y0.ge(z0), x0.ge(z0));
-        let (mi1, mj1, mk1) = (xy & (yz | xz), !xy & yz, (xy & !yz & !xz) | (!xy & !yz));
-        let (mi2, mj2, mk2) = (xy | (yz & xz), !xy | yz, (xy & !yz) | (!xy & (!yz | !xz)));
-        let (i1, j1) = (one_if::<L>(mi1), one_if::<L>(mj1));
-        let (i2, j2) = (one_if::<L>(mi2), one_if::<L>(mj2));
+        let (mi1, mj1) = (xy & xz, !xy & yz);
+        let mk1 = !(mi1 | mj1);
+        let (mi2, mj2) = (xy | (yz & xz), !xy | yz);
+        let mk2 = !(mi2 & mj2);
         let (g3x2, g3x3) = (L::cst(2.0) * g3, L::cst(3.0) * g3);
         let d1 = [minus_one_if(x0, mi1) + g3, minus_one_if(y0, mj1) + g3, minus_one_if(z0, mk1) + g3];
         let d2 = [minus_one_if(x0, mi2) + g3x2, minus_one_if(y0, mj2) + g3x2, minus_one_if(z0, mk2) + g3x2];
         let one = L::cst(1.0);
         let d3 = [x0 - one + g3x3, y0 - one + g3x3, z0 - one + g3x3];
-        let (cell, kk) = ([i.and_c(255), j.and_c(255)], k.and_c(255));
+        // The reference's `& 255` on each axis is left to the lookups.
+        let cell = [i, j];
         let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
-        let (k1, k2) = (one_if::<L>(mk1), one_if::<L>(mk2));
-        let gi = match tables.gradient_indices3(self, [cell[0], cell[1], kk], [[i1, j1, k1], [i2, j2, k2]]) {
+        let gi = match tables.gradient_indices3(self, [i, j, k], [[mi1, mj1, mk1], [mi2, mj2, mk2]]) {
             Some(gi) => gi,
             None => {
-                // perm[kk + c] for c ∈ {0, 1}: looked up once each, then
+                let (i1, j1) = (one_if::<L>(mi1), one_if::<L>(mj1));
+                let (i2, j2) = (one_if::<L>(mi2), one_if::<L>(mj2));
+                // perm[k + c] for c ∈ {0, 1}: looked up once each, then
                 // selected per corner (two table lookups fewer per point).
-                let (pk0, pk1) = (self.perm.at(kk), self.perm.at(kk.add_c(1)));
+                let (pk0, pk1) = (self.perm.at(k), self.perm.at(k.add_c(1)));
                 [
                     self.hash3(cell, [zero; 2], pk0),
                     self.hash3(cell, [i1, j1], L::Int::select(mk1, pk1, pk0)),
@@ -544,7 +669,8 @@ macro_rules! impl_simplex_tabled {
             #[inline(always)]
             fn fill_span<B: BatchLanes>(&self, span: Span<'_, $d>, out: &mut [f32]) {
                 let finite = span.axes.all_finite();
-                grid::fill_chunks::<_, B, $d>(&mut TableReuse { noise: self, memo: ChunkTable::empty(), finite }, span, out)
+                let memo = ChunkTable::empty(span.axes.all_within(SMALL));
+                grid::fill_chunks::<_, B, $d>(&mut TableReuse { noise: self, memo, finite }, span, out)
             }
         }
         impl<B: BatchLanes> ChunkSampler<B, $d> for TableReuse<'_, $d> {

@@ -212,6 +212,10 @@ impl Lanes for X8 {
         I8::from_array(out)
     }
     #[inline(always)]
+    fn floor_to_int(self) -> I8 {
+        I8(unsafe { _mm256_cvttps_epi32(_mm256_floor_ps(self.0)) })
+    }
+    #[inline(always)]
     fn from_int(i: I8) -> Self {
         X8(unsafe { _mm256_cvtepi32_ps(i.0) })
     }

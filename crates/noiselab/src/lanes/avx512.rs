@@ -209,6 +209,10 @@ impl Lanes for X16 {
         I16::from_array(out)
     }
     #[inline(always)]
+    fn floor_to_int(self) -> I16 {
+        I16(unsafe { _mm512_cvt_roundps_epi32::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0) })
+    }
+    #[inline(always)]
     fn from_int(i: I16) -> Self {
         X16(unsafe { _mm512_cvtepi32_ps(i.0) })
     }

@@ -139,6 +139,13 @@ pub trait Lanes:
     /// Convert an integral value (e.g. the result of [`Lanes::floor`]) to an
     /// integer, wrapping modulo 2³² (exact for |x| < 2⁶³; NaN gives 0).
     fn to_int_wrapping(self) -> Self::Int;
+    /// `⌊x⌋` as an integer, for lanes known to lie within ±2³¹ (other
+    /// lanes get an unspecified value): one conversion rounding down on
+    /// AVX-512, with no check for lanes out of range anywhere.
+    #[inline(always)]
+    fn floor_to_int(self) -> Self::Int {
+        self.floor().to_int_wrapping()
+    }
     /// Convert integers to floats (rounded to nearest for |i| > 2²⁴ in f32).
     fn from_int(i: Self::Int) -> Self;
     /// Per lane: `table[idx]`. Indices must be in range (kernels mask them).

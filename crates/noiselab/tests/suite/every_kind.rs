@@ -256,6 +256,10 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         Grid::new([0.5; D], [0.0; D], size(19, 2)),
         Grid::new([-70000.37; D], [0.11; D], size(40, 2)),
         Grid::new([123456.0; D], [1.0 / 48.0; D], size(100, 2)),
+        // Across ±2²¹, where simplex grids stop taking their cells from one
+        // rounding conversion, and just inside it.
+        Grid::new([2097150.0; D], [0.125; D], size(40, 2)),
+        Grid::new([-2097151.0; D], [0.0625; D], size(16, 2)),
         // Columns on and between lattice lines; rows on them, or just below
         // one (−1e-9 splits to the fraction 1.0 in f32): the corners whose
         // offsets are all zero give signed zeros.
