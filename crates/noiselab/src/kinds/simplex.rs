@@ -297,9 +297,11 @@ trait ChunkTables<L: Lanes> {
     fn gradients2(&mut self, noise: &Simplex, cell: [L::Int; 2], upper: L::Mask) -> Option<[[L; 2]; 3]>;
     /// Whether every coordinate is known to lie within ±[`SMALL`].
     fn small(&self) -> bool;
-    /// 3D: the four corners' gradient indices for lanes in cells `cell`,
-    /// corners 1 and 2 a step along the axes set in `steps`.
-    fn gradient_indices3(&mut self, noise: &Simplex, cell: [L::Int; 3], steps: [[L::Mask; 3]; 2]) -> Option<[L::Int; 4]>;
+    /// 3D: the four corners' gradient indices for lanes in cells `cell`.
+    /// Corner 1 steps along `i` or `j` where `steps[0]` says so, else along
+    /// `k`; corner 2 along `i` and `j` where `steps[1]` say so, and along
+    /// `k` unless both do.
+    fn gradient_indices3(&mut self, noise: &Simplex, cell: [L::Int; 3], steps: [[L::Mask; 2]; 2]) -> Option<[L::Int; 4]>;
 }
 
 /// No chunk tables: every lane hashes its own corners.
@@ -315,7 +317,7 @@ impl<L: Lanes> ChunkTables<L> for NoTables {
         false
     }
     #[inline(always)]
-    fn gradient_indices3(&mut self, _: &Simplex, _: [L::Int; 3], _: [[L::Mask; 3]; 2]) -> Option<[L::Int; 4]> {
+    fn gradient_indices3(&mut self, _: &Simplex, _: [L::Int; 3], _: [[L::Mask; 2]; 2]) -> Option<[L::Int; 4]> {
         None
     }
 }
@@ -407,7 +409,7 @@ impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
     /// runs per table, where each lane would take ten lookups); each lane's
     /// four corners read from it.
     #[inline(always)]
-    fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Mask; 3]; 2]) -> Option<[B::Int; 4]> {
+    fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Mask; 2]; 2]) -> Option<[B::Int; 4]> {
         let (c0, d) = chunk_cells::<B, 3>(cell)?;
         let c0 = [c0[0] & 255, c0[1] & 255, c0[2] & 255];
         if self.cell != Some(c0) {
@@ -430,7 +432,7 @@ impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
         let splat = B::Int::splat;
         // Corner 1 steps along one axis: entry 1, 3 or 9 further; corner 2
         // along all but one: 13 less that one's.
-        let [[i1, j1, _], [i2, j2, _]] = steps;
+        let [[i1, j1], [i2, j2]] = steps;
         let e1 = e0.add(B::Int::select(i1, splat(1), B::Int::select(j1, splat(3), splat(9))));
         let e2 = e0.add(B::Int::select(i2, B::Int::select(j2, splat(4), splat(10)), splat(12)));
         let mut gi = [splat(0); 4];
@@ -549,7 +551,7 @@ impl Simplex {
         // The reference's `& 255` on each axis is left to the lookups.
         let cell = [i, j];
         let (zero, unit) = (L::Int::splat(0), L::Int::splat(1));
-        let gi = match tables.gradient_indices3(self, [i, j, k], [[mi1, mj1, mk1], [mi2, mj2, mk2]]) {
+        let gi = match tables.gradient_indices3(self, [i, j, k], [[mi1, mj1], [mi2, mj2]]) {
             Some(gi) => gi,
             None => {
                 let (i1, j1) = (one_if::<L>(mi1), one_if::<L>(mj1));
