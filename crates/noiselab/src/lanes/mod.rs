@@ -141,7 +141,8 @@ pub trait Lanes:
     fn to_int_wrapping(self) -> Self::Int;
     /// `⌊x⌋` as an integer, for lanes known to lie within ±2³¹ (other
     /// lanes get an unspecified value): one conversion rounding down on
-    /// AVX-512, with no check for lanes out of range anywhere.
+    /// AVX-512, a floor and a truncation with no check for lanes out of
+    /// range on AVX2 (elsewhere [`Lanes::to_int_wrapping`] of the floor).
     #[inline(always)]
     fn floor_to_int(self) -> Self::Int {
         self.floor().to_int_wrapping()
