@@ -332,6 +332,20 @@ impl<const D: usize> Axes<D> {
         Axes { coords, ends: self.ends }
     }
 
+    /// The axes of columns `columns` (of axis 0) in every row, in a
+    /// scratch buffer.
+    pub(crate) fn columns(&self, columns: core::ops::Range<usize>) -> Self {
+        let mut sizes = [columns.len(); D];
+        for (d, size) in sizes.iter_mut().enumerate().skip(1) {
+            *size = self.size(d);
+        }
+        let mut axes = Self::room(sizes);
+        let width = columns.len();
+        axes.coords[..width].copy_from_slice(&self.axis(0)[columns]);
+        axes.coords[width..].copy_from_slice(&self.coords[self.ends[0]..self.ends[D - 1]]);
+        axes
+    }
+
     /// The indices along axes 1.. of row `row` (axis 0 varies within a row).
     #[inline(always)]
     pub fn row_indices(&self, mut row: usize) -> [usize; D] {

@@ -39,7 +39,7 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         // Rows wider than a band's block of columns (512), ending in an
         // odd chunk and a partial one after the last pair on both AVX2
         // (139 whole chunks of 8, then 4 columns) and AVX-512 (69 of 16,
-        // then 12).
+        // then 12). Fractals fill it in two strips of 560 and 556.
         grids.push(Grid::new([2.0; D], [1.0 / 32.0; D], size(1116, 8)));
         // Rows over 512 columns of cells narrower than the lanes: five rows
         // a cell (bands on AVX2, exact rows on AVX-512) and ten (bands on
