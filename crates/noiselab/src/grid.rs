@@ -209,6 +209,9 @@ pub enum Stores {
     /// as do value noise's plane blends where the rows start at one offset
     /// from a register boundary (rows of a multiple of the register's
     /// lanes); wider rows, finer cells and other kinds store plainly.
+    /// A fractal's combine of up to eight octaves where every coordinate is
+    /// finite streams where asked to, and on grids of 2²⁰ points (4 MiB) or
+    /// more whether asked or not.
     Streamed,
 }
 
@@ -312,6 +315,11 @@ impl<const D: usize> Axes<D> {
     /// Whether every coordinate of every axis is an integer (finite).
     pub(crate) fn all_integers(&self) -> bool {
         self.coords[..self.ends[D - 1]].iter().all(|&c| c.is_finite() && c == crate::lanes::math::floor32(c))
+    }
+
+    /// Points of the grid: every axis's size multiplied.
+    pub(crate) fn points(&self) -> usize {
+        (0..D).fold(1usize, |n, d| n.saturating_mul(self.size(d)))
     }
 
     /// Points along `axis`.

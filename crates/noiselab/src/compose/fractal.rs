@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 
 use super::ComposeError;
 use crate::grid::{store_prefix, Axes, RowPiece, SimdLevel, Span, Stores};
-use crate::lanes::{BatchLanes, Lanes};
+use crate::lanes::{BatchLanes, Lanes, StreamedRun};
 use crate::noise::{Noise, NoiseGradient};
 
 /// How octaves combine. `nᵢ` is octave i's noise at `lacunarityⁱ·p`, `aᵢ =
@@ -571,6 +571,14 @@ const BLOCK: usize = 1 << 17;
 /// 2.87–3.43.
 const STRIP: usize = 512;
 
+/// Fewest points of a grid whose combine stores its values past the caches
+/// ([`Stores::Streamed`]), so that they do not evict the octaves' buffers
+/// (4 MiB; the kinds' own fills stream from [`crate::STREAM_MIN_VALUES`]).
+/// 6-octave fBm at 1/32 (probe, AVX-512, Emerald Rapids, ns/point, two runs
+/// each, plain → streamed): 4096² 3.08–3.17 → 2.70; 2048² 2.94–3.06 →
+/// 2.65–2.68; 1024² 2.79–2.91 → 2.68–2.72; 512² 2.67–2.73 → 2.58–2.94.
+const COMBINE_STREAM_MIN_VALUES: usize = 1 << 20;
+
 impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
     crate::grid::batch_entry!(D);
     #[inline(always)]
@@ -619,7 +627,9 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         // Where every coordinate is finite, point evaluation's NaN guard
         // passes every value: the combine needs no positions.
         let finite = span.axes.all_finite();
-        let fills = OctaveFills { scaled: &scaled[..count], on_integers: &on_integers[..count], summed, finite };
+        // The whole grid's size, not the span's: threads cut it into smaller ones.
+        let stores = if span.axes.points() >= COMBINE_STREAM_MIN_VALUES { Stores::Streamed } else { span.stores };
+        let fills = OctaveFills { scaled: &scaled[..count], on_integers: &on_integers[..count], summed, finite, stores };
         match strip_width(nx, w) {
             // Whole rows of every coordinate, finite: strip by strip.
             Some(width) if D >= 2 && finite && span.start.is_multiple_of(nx) && out.len().is_multiple_of(nx) => {
@@ -642,6 +652,9 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
             }
             _ => self.fill_blocks::<B, D>(&fills, span, out.len(), None, out),
         }
+        if stores == Stores::Streamed {
+            crate::lanes::stream_fence();
+        }
         for axes in &mut scaled[..count] {
             core::mem::replace(axes, Axes::EMPTY).recycle();
         }
@@ -650,13 +663,15 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
 
 /// What a grid fill's octaves read: each kept octave's scaled axes,
 /// whether they lie on integers (such octaves are not filled), how many
-/// leading octaves are filled, and whether every coordinate is finite.
+/// leading octaves are filled, and whether every coordinate is finite; and
+/// how the combine stores.
 #[derive(Clone, Copy)]
 struct OctaveFills<'a, const D: usize> {
     scaled: &'a [Axes<D>],
     on_integers: &'a [bool],
     summed: usize,
     finite: bool,
+    stores: Stores,
 }
 
 /// Columns `first..first + width` of a span's rows of `stride` points:
@@ -725,14 +740,14 @@ impl<N> Fractal<N> {
                     for r in 0..n / width {
                         let at = (done / width + r) * row_stride + first;
                         let octaves = OctaveBuffers { values: &buffers[r * width..], stride, count: summed, total: count };
-                        combine_finite(B::LEVEL, &self.steps, self.mode, octaves, &mut out[at..at + width]);
+                        combine_finite(B::LEVEL, &self.steps, self.mode, octaves, &mut out[at..at + width], fills.stores);
                     }
                 }
                 None => {
                     let block_out = &mut out[done..done + n];
                     let octaves = OctaveBuffers { values: &buffers[..], stride, count: summed, total: count };
                     if fills.finite {
-                        combine_finite(B::LEVEL, &self.steps, self.mode, octaves, block_out);
+                        combine_finite(B::LEVEL, &self.steps, self.mode, octaves, block_out, fills.stores);
                     } else {
                         let part = Span { start, ..span };
                         let amplitudes = self.steps.lane_amplitudes::<B>(summed);
@@ -803,38 +818,38 @@ struct OctaveBuffers<'a> {
 /// compiled again for every noise type, dimension and level (with its
 /// loops unrolled per octave count, the test suite's build then ran past
 /// 40 minutes).
-fn combine_finite(level: SimdLevel, steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+fn combine_finite(level: SimdLevel, steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
     // SAFETY: `runnable` never exceeds the features the CPU reports, and
     // the baseline clone needs none.
     unsafe {
         match crate::grid::runnable(level) {
             #[cfg(all(feature = "std", target_arch = "x86_64"))]
-            SimdLevel::Avx512 => combine_clones::avx512(steps, mode, octaves, out),
+            SimdLevel::Avx512 => combine_clones::avx512(steps, mode, octaves, out, stores),
             #[cfg(all(feature = "std", target_arch = "x86_64"))]
-            SimdLevel::Avx2 => combine_clones::avx2(steps, mode, octaves, out),
-            _ => combine_clones::baseline(steps, mode, octaves, out),
+            SimdLevel::Avx2 => combine_clones::avx2(steps, mode, octaves, out, stores),
+            _ => combine_clones::baseline(steps, mode, octaves, out, stores),
         }
     }
 }
 
 /// [`combine_finite`]'s clones, one per instruction-set level.
 mod combine_clones {
-    use super::{FractalMode, OctaveBuffers, Steps};
+    use super::{FractalMode, OctaveBuffers, Steps, Stores};
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
-    pub(super) unsafe fn avx512(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
-        steps.combine_finite::<crate::lanes::avx512::X16>(mode, octaves, out)
+    pub(super) unsafe fn avx512(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+        steps.combine_finite::<crate::lanes::avx512::X16>(mode, octaves, out, stores)
     }
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
-        steps.combine_finite::<crate::lanes::avx2::X8>(mode, octaves, out)
+    pub(super) unsafe fn avx2(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+        steps.combine_finite::<crate::lanes::avx2::X8>(mode, octaves, out, stores)
     }
 
-    pub(super) unsafe fn baseline(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
-        steps.combine_finite::<crate::lanes::F32x8>(mode, octaves, out)
+    pub(super) unsafe fn baseline(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+        steps.combine_finite::<crate::lanes::F32x8>(mode, octaves, out, stores)
     }
 }
 
@@ -877,32 +892,32 @@ impl Steps {
     /// positions are needed): the octave loop over the filled octaves in
     /// output order, the mode dispatched once per block.
     #[inline(always)]
-    fn combine_finite<B: BatchLanes>(&self, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32]) {
+    fn combine_finite<B: BatchLanes>(&self, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
         let amplitudes = self.lane_amplitudes::<B>(octaves.count);
         let filled = self.filled(octaves, &amplitudes);
         match mode {
-            FractalMode::Fbm => self.combine_finite_as::<B>(FractalMode::Fbm, filled, out),
-            FractalMode::Turbulence => self.combine_finite_as::<B>(FractalMode::Turbulence, filled, out),
-            FractalMode::Ridged => self.combine_finite_as::<B>(FractalMode::Ridged, filled, out),
-            FractalMode::Billow => self.combine_finite_as::<B>(FractalMode::Billow, filled, out),
-            FractalMode::Hybrid => self.combine_finite_as::<B>(FractalMode::Hybrid, filled, out),
+            FractalMode::Fbm => self.combine_finite_as::<B>(FractalMode::Fbm, filled, out, stores),
+            FractalMode::Turbulence => self.combine_finite_as::<B>(FractalMode::Turbulence, filled, out, stores),
+            FractalMode::Ridged => self.combine_finite_as::<B>(FractalMode::Ridged, filled, out, stores),
+            FractalMode::Billow => self.combine_finite_as::<B>(FractalMode::Billow, filled, out, stores),
+            FractalMode::Hybrid => self.combine_finite_as::<B>(FractalMode::Hybrid, filled, out, stores),
         }
     }
 
     /// [`Steps::combine_finite`] in `mode`: up to 8 octaves (fBm's usual 4–8)
-    /// in registers, chunk by chunk; more, octave by octave through a run
-    /// of sums.
+    /// in registers, chunk by chunk, stored as `stores` says; more, octave
+    /// by octave through a run of sums, stored plainly.
     #[inline(always)]
-    fn combine_finite_as<B: BatchLanes>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32]) {
+    fn combine_finite_as<B: BatchLanes>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32], stores: Stores) {
         match filled.count {
-            1 => self.combine_by_chunk::<B, 1>(mode, filled, out),
-            2 => self.combine_by_chunk::<B, 2>(mode, filled, out),
-            3 => self.combine_by_chunk::<B, 3>(mode, filled, out),
-            4 => self.combine_by_chunk::<B, 4>(mode, filled, out),
-            5 => self.combine_by_chunk::<B, 5>(mode, filled, out),
-            6 => self.combine_by_chunk::<B, 6>(mode, filled, out),
-            7 => self.combine_by_chunk::<B, 7>(mode, filled, out),
-            8 => self.combine_by_chunk::<B, 8>(mode, filled, out),
+            1 => self.combine_by_chunk::<B, 1>(mode, filled, out, stores),
+            2 => self.combine_by_chunk::<B, 2>(mode, filled, out, stores),
+            3 => self.combine_by_chunk::<B, 3>(mode, filled, out, stores),
+            4 => self.combine_by_chunk::<B, 4>(mode, filled, out, stores),
+            5 => self.combine_by_chunk::<B, 5>(mode, filled, out, stores),
+            6 => self.combine_by_chunk::<B, 6>(mode, filled, out, stores),
+            7 => self.combine_by_chunk::<B, 7>(mode, filled, out, stores),
+            8 => self.combine_by_chunk::<B, 8>(mode, filled, out, stores),
             _ => self.combine_in_order::<B>(mode, filled, out),
         }
     }
@@ -954,7 +969,7 @@ impl Steps {
     /// chunk, against 48 through a run of sums in memory). The same octaves
     /// in the same order: the same bits.
     #[inline(always)]
-    fn combine_by_chunk<B: BatchLanes, const COUNT: usize>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32]) {
+    fn combine_by_chunk<B: BatchLanes, const COUNT: usize>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32], stores: Stores) {
         let w = B::WIDTH;
         // Loops, not `array::from_fn`, whose closures LLVM may leave out of
         // line, outside the instruction-set clone.
@@ -968,17 +983,45 @@ impl Steps {
             octaves[i] = filled.values(i, 0, padded).as_ptr();
         }
         let (whole, tail) = out.split_at_mut(out.len() / w * w);
-        for (k, out) in whole.chunks_exact_mut(w).enumerate() {
-            // SAFETY: k · w + w ≤ whole.len() ≤ padded.
-            let sum = unsafe { sum_chunk(mode, &octaves, &amplitudes, k * w) };
-            store_prefix(self.finish_chunk(mode, &sum, Filled { at: k * w, ..filled }), out);
+        let chunks = whole.len() / w;
+        match stores {
+            Stores::Streamed => {
+                let mut run = StreamedRun::<B>::new(whole);
+                for k in 0..chunks {
+                    // SAFETY: k · w + w ≤ whole.len() ≤ padded.
+                    run.push(unsafe { self.combined_chunk(mode, &octaves, &amplitudes, filled, k * w) });
+                }
+                run.finish();
+            }
+            Stores::Cached => {
+                for (k, out) in whole.chunks_exact_mut(w).enumerate() {
+                    // SAFETY: k · w + w ≤ whole.len() ≤ padded.
+                    store_prefix(unsafe { self.combined_chunk(mode, &octaves, &amplitudes, filled, k * w) }, out);
+                }
+            }
         }
         if !tail.is_empty() {
-            let at = whole.len();
-            // SAFETY: at + w = padded.
-            let sum = unsafe { sum_chunk(mode, &octaves, &amplitudes, at) };
-            store_prefix(self.finish_chunk(mode, &sum, Filled { at, ..filled }), tail);
+            // SAFETY: whole.len() + w = padded.
+            store_prefix(unsafe { self.combined_chunk(mode, &octaves, &amplitudes, filled, whole.len()) }, tail);
         }
+    }
+
+    /// [`Steps::combine_by_chunk`]'s value of the chunk at `at`.
+    ///
+    /// # Safety
+    /// Each `octaves[i]` points to at least `at + B::WIDTH` readable values.
+    #[inline(always)]
+    unsafe fn combined_chunk<B: BatchLanes, const COUNT: usize>(
+        &self,
+        mode: FractalMode,
+        octaves: &[*const f32; COUNT],
+        amplitudes: &[B; COUNT],
+        filled: Filled<'_, B>,
+        at: usize,
+    ) -> B {
+        // SAFETY: the caller's promise.
+        let sum = unsafe { sum_chunk(mode, octaves, amplitudes, at) };
+        self.finish_chunk(mode, &sum, Filled { at, ..filled })
     }
 
     /// A chunk of [`Steps::combine_in_order`] from its unguarded sum,

@@ -355,3 +355,36 @@ fn fractal_grids_in_strips_equal_their_points() {
         }
     }
 }
+
+/// The combine stores past the caches on grids of 2²⁰ points or more, and
+/// on spans asked to: the point values bit for bit, at every
+/// instruction-set level, in strips (rows starting at every offset from a
+/// register boundary) and in whole rows, into outputs at every offset from
+/// one, writing nothing outside them.
+#[test]
+fn streamed_fractal_combines_equal_their_points() {
+    let fbm = Fractal::new(|o| Improved::new(o.seed), 8, 4, FractalMode::Fbm).unwrap();
+    // Strips of 560 and 547 columns; whole rows of 300.
+    grid_equals_points(&fbm, &Grid::new([0.3, -2.0], [1.0 / 32.0, 1.0 / 48.0], [1107, 950]), "streamed strips");
+    grid_equals_points(&fbm, &Grid::new([0.3, -2.0], [1.0 / 32.0, 1.0 / 48.0], [300, 3500]), "streamed rows");
+    for grid in [Grid::new([-1.3, 0.2], [0.07, 0.05], [1100, 3]), Grid::new([-1.3, 0.2], [0.07, 0.05], [75, 4])] {
+        let axes = Axes::of(&grid);
+        let n = grid.len();
+        for mode in FractalMode::ALL {
+            let fractal = Fractal::new(|o| Improved::new(o.seed), 8, 5, mode).unwrap();
+            let points: Vec<f32> = (0..n).map(|i| fractal.get_f32(grid.point(i))).collect();
+            for level in SimdLevel::available() {
+                for offset in [0, 1, 3, 4, 7, 8, 15] {
+                    let mut buf = vec![f32::NAN; n + 16];
+                    let span = Span { axes: &axes, start: 0, accuracy: Accuracy::Exact, stores: Stores::Streamed };
+                    fractal.dispatch_span(level, span, &mut buf[offset..offset + n]);
+                    for (k, (&v, &p)) in buf[offset..offset + n].iter().zip(&points).enumerate() {
+                        assert_eq!(v.to_bits(), p.to_bits(), "{mode:?} {level:?} {grid:?} offset {offset}: point {k}");
+                    }
+                    let outside = buf[..offset].iter().chain(&buf[offset + n..]);
+                    assert!(outside.into_iter().all(|v| v.is_nan()), "{mode:?} {level:?} offset {offset}: wrote outside the output");
+                }
+            }
+        }
+    }
+}
