@@ -572,11 +572,12 @@ const BLOCK: usize = 1 << 17;
 const STRIP: usize = 512;
 
 /// Fewest points of a grid whose combine stores its values past the caches
-/// ([`Stores::Streamed`]), so that they do not evict the octaves' buffers
-/// (4 MiB; the kinds' own fills stream from [`crate::STREAM_MIN_VALUES`]).
+/// ([`Stores::Streamed`]): 4 MiB, where the kinds' own fills stream from
+/// [`crate::STREAM_MIN_VALUES`] (32 MiB) on.
 /// 6-octave fBm at 1/32 (probe, AVX-512, Emerald Rapids, ns/point, two runs
-/// each, plain → streamed): 4096² 3.08–3.17 → 2.70; 2048² 2.94–3.06 →
-/// 2.65–2.68; 1024² 2.79–2.91 → 2.68–2.72; 512² 2.67–2.73 → 2.58–2.94.
+/// each, plain → streamed): 4096² 3.08–3.17 → 2.70; 2048² (5 octaves)
+/// 2.94–3.06 → 2.65–2.68; 1024² 2.79–2.91 → 2.68–2.72; 512² 2.67–2.73 →
+/// 2.58–2.94.
 const COMBINE_STREAM_MIN_VALUES: usize = 1 << 20;
 
 impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
