@@ -313,8 +313,11 @@ impl<const D: usize> Axes<D> {
     }
 
     /// Whether every coordinate of every axis is an integer (finite).
+    /// Branch-free, so that it vectorises: a fractal tile asks it of every
+    /// octave, and an octave on integers went through its coordinates one
+    /// by one (3 % of a 32² tile of fBm-6, perf).
     pub(crate) fn all_integers(&self) -> bool {
-        self.coords[..self.ends[D - 1]].iter().all(|&c| c.is_finite() && c == crate::lanes::math::floor32(c))
+        self.coords[..self.ends[D - 1]].iter().fold(true, |all, &c| all & (c.is_finite() & (c == crate::lanes::math::floor32(c))))
     }
 
     /// Points of the grid: every axis's size multiplied.

@@ -975,32 +975,49 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     // that knows it ([`fill_fine_rows`]), with each chunk's positions,
     // fades and lanes' cells stored with it.
     let reach = span_of.iter().map(|c| Some(c.reach(w))).reduce(|a, b| if a == b { a } else { None }).flatten();
-    if !long_runs && whole_rows && matches!(reach, Some(Reach::Consecutive | Reach::Near)) {
-        for (s, cells) in (0..cols).step_by(w).zip(span_of.iter()) {
-            let mut a = ChunkAxis { first: cells.first, ..ChunkAxis::ZERO };
-            a.x[..w].copy_from_slice(&frac0[s..s + w]);
-            a.fade[..w].copy_from_slice(&fade0[s..s + w]);
-            for (l, &c) in a.lane.iter_mut().zip(&cell0[s..s + w]) {
-                *l = c - cells.first as i32;
-            }
-            chunk_axis.push(a);
+    let fine = !long_runs && whole_rows && matches!(reach, Some(Reach::Consecutive | Reach::Near));
+    let near = reach == Some(Reach::Near);
+    let axis0 = (&cell0[..cols], &frac0[..], &fade0[..]);
+    // Fast, with cells narrower than the lanes but holding several rows
+    // (2D at 1/4; on AVX-512, at 1/8 where rows are wide): down the
+    // columns too, each lane reading its own cell's coefficients. Not
+    // where the row's lattice points fit in one register: there the exact
+    // held fill beat the bands (32² tiles on AVX-512, probe, ns/sample: at
+    // 1/8 0.76 against 1.00, at 1/4 0.78 against 1.12).
+    let held = !long_runs && whole_rows && D >= 2 && points <= 2 * w;
+    if fine && near && span.accuracy == Accuracy::Fast && D >= 2 && !(held && points <= w) && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1), narrow_band_rows::<B>(nx)) {
+        fine_chunks::<B>(axis0, span_of, true, chunk_axis);
+        chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk { start: k * w, end: (k * w + w).min(cols), cell: a.first }));
+        let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
+        // Back to the kept vector, which the bands take: held here, it
+        // left them an empty one, so every call allocated their table
+        // and freed this one (a malloc and a free per fBm tile, perf).
+        bound.keep_in(kept_bound);
+        let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
+        fill_bands::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
+        point_rows.records.keep_in(kept_records);
+        return;
+    }
+    // Whole rows of cells narrower than the lanes whose lattice points
+    // fit in two registers (a 32² tile at 1/2 to 1/8 on AVX-512): the
+    // points held in registers ([`fill_held_fine_rows`]), whatever the
+    // chunks' reach.
+    if held {
+        fine_chunks::<B>(axis0, span_of, false, chunk_axis);
+        let ny = span.axes.size(1);
+        split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w + w);
+        let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
+        if points <= w {
+            fill_held_fine_rows::<K, B, D, false>(kind, span, out, chunk_axis, &mut point_rows, (min_cell, points), axis1);
+        } else {
+            fill_held_fine_rows::<K, B, D, true>(kind, span, out, chunk_axis, &mut point_rows, (min_cell, points), axis1);
         }
-        let near = reach == Some(Reach::Near);
-        // Fast, with cells narrower than the lanes but holding several rows
-        // (2D at 1/4; on AVX-512, at 1/8 where rows are wide): down the
-        // columns too, each lane reading its own cell's coefficients.
-        if near && span.accuracy == Accuracy::Fast && D >= 2 && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1), narrow_band_rows::<B>(nx)) {
-            chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk { start: k * w, end: (k * w + w).min(cols), cell: a.first }));
-            let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
-            // Back to the kept vector, which the bands take: held here, it
-            // left them an empty one, so every call allocated their table
-            // and freed this one (a malloc and a free per fBm tile, perf).
-            bound.keep_in(kept_bound);
-            let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
-            fill_bands::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
-            point_rows.records.keep_in(kept_records);
-            return;
-        }
+        point_rows.records.keep_in(kept_records);
+        bound.keep_in(kept_bound);
+        return;
+    }
+    if fine {
+        fine_chunks::<B>(axis0, span_of, true, chunk_axis);
         fill_fine_rows::<K, B, D>(kind, span, out, chunk_axis, (&mut point_rows, &mut bound), (min_cell, points), near);
         point_rows.records.keep_in(kept_records);
         bound.keep_in(kept_bound);
@@ -1453,6 +1470,26 @@ fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize,
     }
 }
 
+/// Each aligned chunk of a span's columns, for the fine rows: positions
+/// and fades (`axis0`: cells counted from the smallest, by column;
+/// positions and fades padded to whole lanes) and each lane's cell,
+/// counted from the chunk's first (`relative`) or from the smallest.
+#[inline(always)]
+fn fine_chunks<B: BatchLanes>((cell0, frac0, fade0): AxisRows<'_>, span_of: &[ChunkCells], relative: bool, chunk_axis: &mut Vec<ChunkAxis>) {
+    let w = B::WIDTH;
+    for (s, cells) in (0..cell0.len()).step_by(w).zip(span_of) {
+        let first = if relative { cells.first } else { 0 };
+        let mut a = ChunkAxis { first, ..ChunkAxis::ZERO };
+        a.x[..w].copy_from_slice(&frac0[s..s + w]);
+        a.fade[..w].copy_from_slice(&fade0[s..s + w]);
+        let lanes = &cell0[s..(s + w).min(cell0.len())];
+        for (l, &c) in a.lane.iter_mut().zip(lanes) {
+            *l = c - first as i32;
+        }
+        chunk_axis.push(a);
+    }
+}
+
 /// The exact fill of whole rows whose cells are narrower than a chunk (a
 /// regular grid with fewer than WIDTH columns per cell: the finer octaves
 /// of a fractal), every chunk reaching its cells one way (`near`: through
@@ -1484,51 +1521,189 @@ fn fill_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let (weights, fs) = row_lanes::<K, B, D>(kind, f);
         bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, bound, points);
         let view = bound.entries(bound_fields, 0, bound.stride());
-        let row = FineRow { view: &view, chunk_axis, weights };
         let out = &mut out[offset..offset + nx];
-        match (near, off_line(f)) {
-            (true, true) => row.write::<K, true, true>(kind, out),
-            (true, false) => row.write::<K, true, false>(kind, out),
-            (false, true) => row.write::<K, false, true>(kind, out),
-            (false, false) => row.write::<K, false, false>(kind, out),
+        let off = off_line(f);
+        if near {
+            FineRow { points: NearPoints(&view), chunk_axis, weights }.write::<K>(kind, off, out);
+        } else {
+            FineRow { points: PointsAt(&view), chunk_axis, weights }.write::<K>(kind, off, out);
         }
     }
 }
 
-/// One row of [`fill_fine_rows`]: its bound records, the span's chunks and
-/// the row's fades on axes 1...
-struct FineRow<'a, B: BatchLanes, const D: usize> {
-    view: &'a Entries<'a>,
+/// The exact fill of whole rows whose cells are narrower than a chunk and
+/// whose lattice points along axis 0 fit in one register, or two (`TWO`):
+/// the finer octaves of a fractal over a small tile (a 32² tile at 1/8,
+/// 1/4 and 1/2 on AVX-512, at 1/4 on AVX2). Each plane's hashed point rows
+/// are loaded into registers once; each row binds them there and every
+/// chunk permutes its lanes' corners out of them, whatever its reach.
+/// [`fill_fine_rows`] stores each row's bound records and loads them back
+/// chunk by chunk, and walks the rows with the span's row iterator and a
+/// split per row: on a row of two chunks that bookkeeping outweighed the
+/// chunks.
+#[inline(always)]
+fn fill_held_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(
+    kind: &K,
+    span: Span<'_, D>,
+    out: &mut [f32],
+    chunk_axis: &[ChunkAxis],
+    point_rows: &mut PointRows<D>,
+    (min_cell, points): (i32, usize),
+    (cell1, frac1, fade1): AxisRows<'_>,
+) {
+    let (nx, w) = (span.axes.size(0), B::WIDTH);
+    let rows = PointRows::<D>::PER_PLANE;
+    let first_row = span.start / nx;
+    let end_row = first_row + out.len() / nx;
+    let mut r = first_row;
+    while r < end_row {
+        let (y0, y1, cell, f) = axis1_run::<K, D>(kind, &span, cell1, (r, end_row), w);
+        let slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
+        // The plane's rows of points: row r's first register, and second.
+        let view = point_rows.records.entries(rows * K::HASHED.total(), 0, 2 * w);
+        let mut hashed = [[Corner::<B>::zero(); 2]; MAX_CORNERS / 2];
+        for (held, &slot) in hashed.iter_mut().zip(&slot_of).take(rows) {
+            for (j, h) in held.iter_mut().enumerate().take(if TWO { 2 } else { 1 }) {
+                *h = At { entries: &view, at: j * w }.record(slot * K::HASHED.total(), 0, K::HASHED);
+            }
+        }
+        // Positions and fades on axes 2.., for the whole run.
+        let mut fs = [B::cst(0.0); D];
+        let mut weights = [B::cst(0.0); D];
+        let mut off_rest = false;
+        for d in 2..D {
+            fs[d] = B::splat(f[d]);
+            weights[d] = B::splat(kind.fade(f[d]));
+            off_rest |= f[d] != 0.0;
+        }
+        for y in y0..y1 {
+            fs[1] = B::splat(frac1[y]);
+            weights[1] = B::splat(fade1[y]);
+            let mut bound = HeldPoints::<B, TWO> { rows: [[Corner::zero(); 2]; MAX_CORNERS / 2], fields: K::BOUND };
+            for (row, (held, b)) in hashed.iter().zip(&mut bound.rows).enumerate().take(rows) {
+                let offsets = offsets(fs, 2 * row);
+                for (h, b) in held.iter().zip(b).take(if TWO { 2 } else { 1 }) {
+                    *b = kind.bind(*h, offsets);
+                }
+            }
+            let at = (r + (y - y0) - first_row) * nx;
+            FineRow { points: bound, chunk_axis, weights }.write::<K>(kind, off_rest || frac1[y] != 0.0, &mut out[at..at + nx]);
+        }
+        r += y1 - y0;
+    }
+}
+
+/// Where a fine row's chunks find their corners' bound records.
+trait FinePoints<B: BatchLanes> {
+    /// The records of a chunk's lanes' corners.
+    fn chunk(&self, axis: &ChunkAxis) -> impl Source<B>;
+}
+
+/// Bound records in a row's table, each chunk's lanes within one register
+/// from the chunk's first cell: one permute per field.
+struct NearPoints<'a>(&'a Entries<'a>);
+
+impl<B: BatchLanes> FinePoints<B> for NearPoints<'_> {
+    #[inline(always)]
+    fn chunk(&self, axis: &ChunkAxis) -> impl Source<B> {
+        let lane = B::load_int(&axis.lane);
+        PerLane::<B, true> { entries: self.0, first: axis.first, lane: [lane, lane.add_c(1)] }
+    }
+}
+
+/// Bound records in a row's table, lane j of a chunk at its first cell
+/// plus j: plain loads.
+struct PointsAt<'a>(&'a Entries<'a>);
+
+impl<B: BatchLanes> FinePoints<B> for PointsAt<'_> {
+    #[inline(always)]
+    fn chunk(&self, axis: &ChunkAxis) -> impl Source<B> {
+        At { entries: self.0, at: axis.first }
+    }
+}
+
+/// A row's bound records of one or two (`TWO`) registers of lattice
+/// points per plane row, held ([`fill_held_fine_rows`]): each lane's corner
+/// permuted out by its cell, counted from the span's smallest.
+#[derive(Clone, Copy)]
+struct HeldPoints<B: BatchLanes, const TWO: bool> {
+    rows: [[Corner<B>; 2]; MAX_CORNERS / 2],
+    fields: Fields,
+}
+
+/// One chunk's lanes over [`HeldPoints`].
+struct HeldLanes<'a, B: BatchLanes, const TWO: bool> {
+    points: &'a HeldPoints<B, TWO>,
+    lane: [B::Int; 2],
+}
+
+impl<B: BatchLanes, const TWO: bool> FinePoints<B> for HeldPoints<B, TWO> {
+    #[inline(always)]
+    fn chunk(&self, axis: &ChunkAxis) -> impl Source<B> {
+        let lane = B::load_int(&axis.lane);
+        HeldLanes { points: self, lane: [lane, lane.add_c(1)] }
+    }
+}
+
+impl<B: BatchLanes, const TWO: bool> Source<B> for HeldLanes<'_, B, TWO> {
+    #[inline(always)]
+    fn field(&self, k: usize, next: usize) -> B {
+        let fields = self.points.fields;
+        let [lo, hi] = self.points.rows[k / fields.total()].map(|r| {
+            let m = k % fields.total();
+            if m < fields.floats {
+                r.f[m]
+            } else {
+                B::from_bits(r.i[m - fields.floats])
+            }
+        });
+        if TWO {
+            B::permute2(lo, hi, self.lane[next])
+        } else {
+            B::permute(lo, self.lane[next])
+        }
+    }
+}
+
+/// One row of the fine fills: where its chunks' corners come from, the
+/// span's chunks and the row's fades on axes 1...
+struct FineRow<'a, P, B: BatchLanes, const D: usize> {
+    points: P,
     chunk_axis: &'a [ChunkAxis],
     weights: [B; D],
 }
 
-impl<B: BatchLanes, const D: usize> FineRow<'_, B, D> {
-    /// Every chunk of the row into `out` (the whole row). `NEAR`: lanes
-    /// permute one register of entries; `OFF_LINE`: as in [`corner_values`].
+impl<P: FinePoints<B>, B: BatchLanes, const D: usize> FineRow<'_, P, B, D> {
+    /// Every chunk of the row into `out` (the whole row); `off_line`: the
+    /// row is off the lattice lines along axis 0 ([`corner_values`]),
+    /// decided once a row, not once a chunk.
     #[inline(always)]
-    fn write<K: Lattice<D>, const NEAR: bool, const OFF_LINE: bool>(&self, kind: &K, out: &mut [f32]) {
-        let w = B::WIDTH;
-        let full = out.len() / w;
-        let mut whole = out.chunks_exact_mut(w);
-        for (axis, out) in self.chunk_axis.iter().zip(&mut whole) {
-            store_prefix(self.chunk::<K, NEAR, OFF_LINE>(kind, axis), out);
-        }
-        let tail = whole.into_remainder();
-        if !tail.is_empty() {
-            store_prefix(self.chunk::<K, NEAR, OFF_LINE>(kind, &self.chunk_axis[full]), tail);
+    fn write<K: Lattice<D>>(&self, kind: &K, off_line: bool, out: &mut [f32]) {
+        if off_line {
+            self.write_as::<K, true>(kind, out);
+        } else {
+            self.write_as::<K, false>(kind, out);
         }
     }
 
     #[inline(always)]
-    fn chunk<K: Lattice<D>, const NEAR: bool, const OFF_LINE: bool>(&self, kind: &K, axis: &ChunkAxis) -> B {
+    fn write_as<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, out: &mut [f32]) {
+        let w = B::WIDTH;
+        let full = out.len() / w;
+        let mut whole = out.chunks_exact_mut(w);
+        for (axis, out) in self.chunk_axis.iter().zip(&mut whole) {
+            store_prefix(self.chunk::<K, OFF_LINE>(kind, axis), out);
+        }
+        let tail = whole.into_remainder();
+        if !tail.is_empty() {
+            store_prefix(self.chunk::<K, OFF_LINE>(kind, &self.chunk_axis[full]), tail);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, axis: &ChunkAxis) -> B {
         let (x, fade) = axis.lanes::<B>();
-        let values = if NEAR {
-            let lane = B::load_int(&axis.lane);
-            corner_values::<K, B, D, OFF_LINE>(kind, x, &PerLane::<B, true> { entries: self.view, first: axis.first, lane: [lane, lane.add_c(1)] })
-        } else {
-            corner_values::<K, B, D, OFF_LINE>(kind, x, &At { entries: self.view, at: axis.first })
-        };
+        let values = corner_values::<K, B, D, OFF_LINE>(kind, x, &self.points.chunk(axis));
         let mut weights = self.weights;
         weights[0] = fade;
         finish(kind, interpolate(values, weights))

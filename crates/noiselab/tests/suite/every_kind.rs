@@ -280,6 +280,16 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         Grid::new(axes([-3.5, 1.25, 0.0]), [1.0 / 32.0; D], axes([16, 20, 2])),
         // And across two cells: a chunk each (16 lanes) or two (8).
         Grid::new(axes([1.0, -0.25, 0.5]), [1.0 / 16.0; D], axes([32, 24, 2])),
+        // Tiles of cells narrower than the lanes whose lattice points fit
+        // in one register or two (a fractal tile's fine octaves), each
+        // plane's points held in registers: 32 columns at 1/8, 33 at 1/4,
+        // 32 and 12 at 1/2, on and off the lattice lines, and an axis 0
+        // that descends by uneven steps of cells.
+        Grid::new(axes([4.0, -0.5, 0.0]), [0.125; D], axes([32, 20, 2])),
+        Grid::new(axes([-2.0, 0.25, 0.5]), [0.25; D], axes([33, 12, 2])),
+        Grid::new(axes([6.0, 0.0, -1.0]), [0.5; D], axes([32, 8, 2])),
+        Grid::new(axes([1.3, -7.0, 0.0]), [0.5; D], axes([12, 6, 2])),
+        Grid::new(axes([3.1, 0.6, 0.2]), axes([-0.3, 0.2, 0.7]), axes([20, 9, 2])),
         // Non-finite coordinates (NaN where the scalar API gives NaN): the
         // last axis at 0.3 + i·∞ (NaN, then +∞), and axis 0 from 3.0e38 by
         // 1e37, past f32::MAX (≈ 3.4e38) from column 5 of each row.

@@ -29,8 +29,9 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         // tall enough for bands along axis 1 (in 3D and 4D as well).
         Grid::new([0.13; D], [0.25; D], core::array::from_fn(|d| [130, 40, 3, 2][d])),
         // Tiles: rows of one to four whole chunks (of 8 or 16 lanes) inside
-        // one cell, or across cells narrower than the lanes, whose bands
-        // are written with the chunks' coefficients held.
+        // one cell, whose bands are written with the chunks' coefficients
+        // held; and across cells narrower than the lanes, whose lattice
+        // points fit in a register: filled exactly, the points held.
         Grid::new([2.0; D], [1.0 / 32.0; D], size(32, rest)),
         Grid::new([1.0; D], [1.0 / 16.0; D], size(32, rest)),
         Grid::new([-1.0; D], [0.25; D], size(16, rest)),
