@@ -1299,18 +1299,12 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut bound = Columns::kept_in(kept_bound, 1, points * PointRows::<D>::PER_PLANE * K::BOUND.total() * 16);
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
-    // Grid rows `first_row..end_row`; whole rows, so row r starts at
-    // (r − first_row) · nx in `out`.
-    let first_row = span.start / nx;
-    let end_row = first_row + out.len() / nx;
     // Rows of a few whole chunks, each inside one cell (a tile inside a
     // cell, or across a few), are written by `write_held_rows`: how many
     // chunks, or 0.
     let aligned = chunks_aligned(chunks, w);
     let held = if aligned && nx == chunks.len() * w && matches!(chunks.len(), 1 | 2 | 4) { chunks.len() } else { 0 };
-    let mut r = first_row;
-    while r < end_row {
-        let (y0, y1, cell, f) = axis1_run::<K, D>(kind, &span, cell1, (r, end_row), w);
+    for AxisRun { row, y0, y1, cell, f } in axis1_runs::<K, D>(kind, &span, cell1, out.len(), w) {
         if plane != Some(cell) {
             slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
             plane = Some(cell);
@@ -1318,14 +1312,13 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let mut y = y0;
         while y < y1 {
             let rows = (y1 - y).min(w);
-            let at = (r + (y - y0) - first_row) * nx;
+            let at = (row + (y - y0)) * nx;
             let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f };
             let to = &mut staging.target(&mut out[at..])[..rows * nx];
             write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), &mut bound, (to, nx));
             staging.flush::<B>(&mut out[at..at + rows * nx]);
             y += rows;
         }
-        r += y1 - y0;
     }
     bound.keep_in(kept_bound);
 }
@@ -1338,23 +1331,58 @@ fn chunks_aligned(chunks: &[Chunk], w: usize) -> bool {
     chunks.iter().enumerate().fold(true, |all, (k, ch)| all & (ch.start == k * w))
 }
 
-/// The run of grid rows from row `r` (of a span's whole rows, up to
-/// `end_row`) in one cell along axis 1 and at one position on axes 2..:
-/// rows `y0..y1` along axis 1, their cell on axes 1.. (`cell1`: each row's
-/// along axis 1, from [`split_axis`]) and their positions on axes 2..
-/// (axes 0 and 1 left at 0). The walk [`fill_row_batches`] and
-/// [`fill_bands`] share.
+/// A span's whole rows (`len` points of it), run by run of rows in one
+/// cell along axis 1 and at one position on axes 2.. (`cell1`: each row's
+/// cell along axis 1, from [`split_axis`]): the walk [`fill_row_batches`],
+/// [`fill_held_fine_rows`] and [`fill_bands`] share.
 #[inline(always)]
-fn axis1_run<K: Lattice<D>, const D: usize>(kind: &K, span: &Span<'_, D>, cell1: &[i32], (r, end_row): (usize, usize), w: usize) -> (usize, usize, [i32; D], [f32; D]) {
-    let idx = span.axes.row_indices(r);
-    let y0 = idx[1];
-    let y1 = run_end(&cell1[..span.axes.size(1).min(y0 + (end_row - r))], y0, w);
-    let (mut cell, mut f) = ([0i32; D], [0f32; D]);
-    cell[1] = cell1[y0];
-    for d in 2..D {
-        (cell[d], f[d]) = kind.split(span.axes.axis(d)[idx[d]]);
+fn axis1_runs<'a, K: Lattice<D>, const D: usize>(kind: &'a K, span: &'a Span<'a, D>, cell1: &'a [i32], len: usize, w: usize) -> AxisRuns<'a, K, D> {
+    let first_row = span.start / span.axes.size(0);
+    AxisRuns { kind, span, cell1, w, first_row, next: first_row, end_row: first_row + len / span.axes.size(0) }
+}
+
+/// The runs of [`axis1_runs`]: grid rows `next..end_row` still to walk.
+struct AxisRuns<'a, K, const D: usize> {
+    kind: &'a K,
+    span: &'a Span<'a, D>,
+    cell1: &'a [i32],
+    w: usize,
+    first_row: usize,
+    next: usize,
+    end_row: usize,
+}
+
+/// A run of [`axis1_runs`]: rows `y0..y1` along axis 1, the first of them
+/// `row` rows into the span, their cell on axes 1.. and their positions
+/// on axes 2.. (axes 0 and 1 left at 0).
+struct AxisRun<const D: usize> {
+    row: usize,
+    y0: usize,
+    y1: usize,
+    cell: [i32; D],
+    f: [f32; D],
+}
+
+impl<K: Lattice<D>, const D: usize> Iterator for AxisRuns<'_, K, D> {
+    type Item = AxisRun<D>;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<AxisRun<D>> {
+        let r = self.next;
+        if r >= self.end_row {
+            return None;
+        }
+        let idx = self.span.axes.row_indices(r);
+        let y0 = idx[1];
+        let y1 = run_end(&self.cell1[..self.span.axes.size(1).min(y0 + (self.end_row - r))], y0, self.w);
+        let (mut cell, mut f) = ([0i32; D], [0f32; D]);
+        cell[1] = self.cell1[y0];
+        for d in 2..D {
+            (cell[d], f[d]) = self.kind.split(self.span.axes.axis(d)[idx[d]]);
+        }
+        self.next = r + (y1 - y0);
+        Some(AxisRun { row: r - self.first_row, y0, y1, cell, f })
     }
-    (y0, y1, cell, f)
 }
 
 /// [`fill_row_batches`]' batch: every point's records bound for the
@@ -1553,11 +1581,7 @@ fn fill_held_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: 
 ) {
     let (nx, w) = (span.axes.size(0), B::WIDTH);
     let rows = PointRows::<D>::PER_PLANE;
-    let first_row = span.start / nx;
-    let end_row = first_row + out.len() / nx;
-    let mut r = first_row;
-    while r < end_row {
-        let (y0, y1, cell, f) = axis1_run::<K, D>(kind, &span, cell1, (r, end_row), w);
+    for AxisRun { row, y0, y1, cell, f } in axis1_runs::<K, D>(kind, &span, cell1, out.len(), w) {
         let slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
         // The plane's rows of points: row r's first register, and second.
         let view = point_rows.records.entries(rows * K::HASHED.total(), 0, 2 * w);
@@ -1586,10 +1610,9 @@ fn fill_held_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: 
                     *b = kind.bind(*h, offsets);
                 }
             }
-            let at = (r + (y - y0) - first_row) * nx;
+            let at = (row + (y - y0)) * nx;
             FineRow { points: bound, chunk_axis, weights }.write::<K>(kind, off_rest || frac1[y] != 0.0, &mut out[at..at + nx]);
         }
-        r += y1 - y0;
     }
 }
 
@@ -1810,14 +1833,8 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let direct = staging.on() && aligned && nx == whole * w && !held_band && nx <= BAND_BLOCK_COLUMNS;
     let staged = staging.on() && !direct;
     let piece_rows = if staged { (STAGE_VALUES / nx).max(1) } else { usize::MAX };
-    // Grid rows `first_row..end_row`; whole rows, so row r starts at
-    // (r − first_row) · nx in `out`.
-    let first_row = span.start / nx;
-    let end_row = first_row + out.len() / nx;
-    let mut r = first_row;
-    while r < end_row {
-        // The band: rows y0..y1 of one plane, in one cell along axis 1.
-        let (y0, y1, cell, f) = axis1_run::<K, D>(kind, &span, cell1, (r, end_row), w);
+    // The band: rows y0..y1 of one plane, in one cell along axis 1.
+    for AxisRun { row, y0, y1, cell, f } in axis1_runs::<K, D>(kind, &span, cell1, out.len(), w) {
         let slot_of = point_rows.plane::<K, B>(kind, cell, min_cell, points);
         // Bind the plane's rows at the band's offsets on axes 2.., with
         // v = 0 and v = 1 on axis 1.
@@ -1880,7 +1897,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let mut ya = y0;
         while ya < y1 {
             let yb = y1.min(ya.saturating_add(piece_rows));
-            let at = (r + (ya - y0) - first_row) * nx;
+            let at = (row + (ya - y0)) * nx;
             let n = (yb - ya) * nx;
             let band_out = if staged { &mut staging.target(&mut out[at..])[..n] } else { &mut out[at..at + n] };
             let band_rows = (&frac1[ya..yb], &fade1[ya..yb]);
@@ -1916,7 +1933,6 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
             }
             ya = yb;
         }
-        r += y1 - y0;
     }
     let [lower, upper] = bound;
     lower.keep_in(kept_lower);
