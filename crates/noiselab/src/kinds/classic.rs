@@ -277,10 +277,18 @@ impl<const D: usize> Lattice<D> for Classic {
         b
     }
 
+    /// `rx·gx`: the gradient's x passes through `bind`.
+    const X_TERM: bool = true;
+
+    #[inline(always)]
+    fn x_term<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+        x * b.f[0]
+    }
+
     /// `rx·gx + ry·gy + rz·gz`, summed from x, as the C code.
     #[inline(always)]
-    fn eval<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
-        let mut dot = x * b.f[0];
+    fn eval_from_x_term<L: Lanes>(&self, b: &Corner<L>, term: L) -> L {
+        let mut dot = term;
         for d in 1..D {
             dot = dot + b.f[d];
         }

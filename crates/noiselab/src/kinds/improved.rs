@@ -297,12 +297,24 @@ impl<const D: usize> Lattice<D> for Improved {
         b
     }
 
+    /// 1D–3D: `x·c₀`, axis 0's coefficient passing through `bind`; 4D: `x`.
+    const X_TERM: bool = D < 4;
+
     #[inline(always)]
-    fn eval<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+    fn x_term<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
         if D == 4 {
-            Self::grad4(b.i[0], x, b.f[0], b.f[1], b.f[2])
+            x
         } else {
-            L::select(L::cst(0.0).lt(b.f[0].abs()), x * b.f[0] + b.f[1], b.f[1])
+            x * b.f[0]
+        }
+    }
+
+    #[inline(always)]
+    fn eval_from_x_term<L: Lanes>(&self, b: &Corner<L>, term: L) -> L {
+        if D == 4 {
+            Self::grad4(b.i[0], term, b.f[0], b.f[1], b.f[2])
+        } else {
+            L::select(L::cst(0.0).lt(b.f[0].abs()), term + b.f[1], b.f[1])
         }
     }
 
@@ -312,11 +324,11 @@ impl<const D: usize> Lattice<D> for Improved {
     /// offsets are not both zero, their sum is never −0, and the result is
     /// `eval`'s bit for bit. (A quarter of a 3D grid point's time.)
     #[inline(always)]
-    fn eval_unsigned_zero<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+    fn eval_unsigned_zero_from_x_term<L: Lanes>(&self, b: &Corner<L>, term: L) -> L {
         if D == 4 {
-            <Self as Lattice<D>>::eval(self, b, x)
+            <Self as Lattice<D>>::eval_from_x_term(self, b, term)
         } else {
-            x * b.f[0] + b.f[1]
+            term + b.f[1]
         }
     }
 

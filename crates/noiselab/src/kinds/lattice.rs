@@ -131,17 +131,42 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
 
     /// The corner's value at offset `x` along axis 0, from a bound record.
     /// Must be affine in `x` for [`Accuracy::Fast`].
-    fn eval<L: Lanes>(&self, bound: &Corner<L>, x: L) -> L;
+    #[inline(always)]
+    fn eval<L: Lanes>(&self, bound: &Corner<L>, x: L) -> L {
+        self.eval_from_x_term(bound, self.x_term(bound, x))
+    }
+
+    /// Whether [`Lattice::eval`] starts from a term in `x` alone
+    /// ([`Lattice::x_term`]) formed from fields [`Lattice::bind`] passes
+    /// through: then the rows of a grid in one cell share each corner's
+    /// term at each column, and a batch of rows forms it once.
+    const X_TERM: bool = false;
+
+    /// The corner's term in `x` (`x` itself where the kind has none), from
+    /// fields [`Lattice::bind`] leaves as they are.
+    #[inline(always)]
+    fn x_term<L: Lanes>(&self, _bound: &Corner<L>, x: L) -> L {
+        x
+    }
+
+    /// [`Lattice::eval`] from the corner's [`Lattice::x_term`].
+    fn eval_from_x_term<L: Lanes>(&self, bound: &Corner<L>, term: L) -> L;
 
     /// [`Lattice::eval`] up to the sign of a zero result, and bit for bit
-    /// where the corner's offsets on axes 1.. are not all zero. Kinds may
-    /// drop guards that only keep a zero's sign: [`interpolate`] loses it
-    /// for every corner but corner 0 (the upper end of a lerp, `a + t·(b −
-    /// a)` with t ≥ +0, gives the same bits for b = +0 and b = −0, so a
-    /// corner upper on some axis never shows its zero's sign).
+    /// where the corner's offsets on axes 1.. are not all zero.
     #[inline(always)]
     fn eval_unsigned_zero<L: Lanes>(&self, bound: &Corner<L>, x: L) -> L {
-        self.eval(bound, x)
+        self.eval_unsigned_zero_from_x_term(bound, self.x_term(bound, x))
+    }
+
+    /// [`Lattice::eval_unsigned_zero`] from the corner's [`Lattice::x_term`].
+    /// Kinds may drop guards that only keep a zero's sign: [`interpolate`]
+    /// loses it for every corner but corner 0 (the upper end of a lerp, `a +
+    /// t·(b − a)` with t ≥ +0, gives the same bits for b = +0 and b = −0, so
+    /// a corner upper on some axis never shows its zero's sign).
+    #[inline(always)]
+    fn eval_unsigned_zero_from_x_term<L: Lanes>(&self, bound: &Corner<L>, term: L) -> L {
+        self.eval_from_x_term(bound, term)
     }
 
     /// The corner's value at `offset`, up to the sign of a zero result:
@@ -581,7 +606,8 @@ struct Tables {
     /// The [`Columns`] of the fill: the point rows' hashed records, the
     /// rows' bound records ([`fill_bands`]: at v = 0, and `bound_upper` at
     /// v = 1), the fast rows' polynomials ([`fill_bands`]: the cells'
-    /// half-blends) and a plane's blends.
+    /// half-blends; [`fill_row_batches`]: the chunks' terms in x) and a
+    /// plane's blends.
     records: Vec<f32>,
     bound: Vec<f32>,
     bound_upper: Vec<f32>,
@@ -953,7 +979,8 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             let ny = span.axes.size(1);
             split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w + w);
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
-            fill_row_batches::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), (&mut point_rows, kept_bound), (min_cell, points), axis1);
+            let kept = (kept_bound, kept_coef);
+            fill_row_batches::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), (&mut point_rows, kept), (min_cell, points), axis1);
         }
         point_rows.records.keep_in(kept_records);
         return;
@@ -1289,7 +1316,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
     span: Span<'_, D>,
     (out, staging): (&mut [f32], &mut Staging<'_>),
     (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
-    (point_rows, kept_bound): (&mut PointRows<D>, &mut Vec<f32>),
+    (point_rows, (kept_bound, terms)): (&mut PointRows<D>, (&mut Vec<f32>, &mut Vec<f32>)),
     (min_cell, points): (i32, usize),
     (cell1, frac1, fade1): AxisRows<'_>,
 ) {
@@ -1315,7 +1342,7 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
             let at = (row + (y - y0)) * nx;
             let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f };
             let to = &mut staging.target(&mut out[at..])[..rows * nx];
-            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), &mut bound, (to, nx));
+            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), (&mut bound, terms), (to, nx));
             staging.flush::<B>(&mut out[at..at + rows * nx]);
             y += rows;
         }
@@ -1394,7 +1421,7 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
     batch: &RowBatch<'_, D>,
     (chunks, chunk_axis, held): (&[Chunk], &[ChunkAxis], usize),
     (hashed, slot_of, points): (&Columns, &[usize; MAX_CORNERS / 2], usize),
-    bound: &mut Columns,
+    (bound, terms): (&mut Columns, &mut Vec<f32>),
     (out, nx): (&mut [f32], usize),
 ) {
     let per_point = PointRows::<D>::PER_PLANE * K::BOUND.total();
@@ -1435,14 +1462,13 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
     }
     let table = bound.field(0, 0);
     let records = BatchRecords { table, per_point, row: 0 };
-    let mut cells = [0usize; HELD_BAND_CHUNKS];
-    for (c, ch) in cells.iter_mut().zip(chunks) {
-        *c = ch.cell;
-    }
-    let chunks_held = (chunk_axis, &cells);
+    // The chunks' cells read where used: copied into an array, they became
+    // a masked gather and a masked store that the first read of the array
+    // waited on (about a tenth of a 32² tile's time on AVX-512, perf).
+    let chunks_held = (chunk_axis, chunks);
     // Rows inside one cell read its corners once a row; across cells (a
     // chunk a cell on AVX-512 at 1/16) once a chunk.
-    let one_cell = cells[..held].iter().all(|&c| c == cells[0]);
+    let one_cell = chunks[..held].iter().all(|ch| ch.cell == chunks[0].cell);
     let rest = (weights, off_rest);
     match (held, one_cell) {
         (1, _) => return write_held_rows::<K, B, D, 1, true>(kind, batch, chunks_held, &records, rest, out),
@@ -1452,16 +1478,37 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         (4, false) => return write_held_rows::<K, B, D, 4, false>(kind, batch, chunks_held, &records, rest, out),
         _ => {}
     }
+    // Each chunk's corners' terms in x, the same for every row of the
+    // batch ([`Lattice::X_TERM`]): formed once, from its first row's.
+    let corners = 1 << D;
+    if K::X_TERM {
+        // Every entry is written below: grown, never cleared.
+        if terms.len() < chunks.len() * corners * B::WIDTH {
+            terms.resize(chunks.len() * corners * B::WIDTH, 0.0);
+        }
+        for ((ch, axis), at) in chunks.iter().zip(chunk_axis).zip(terms.chunks_exact_mut(corners * B::WIDTH)) {
+            let held = records.held::<D>(ch.cell, K::BOUND);
+            for (t, to) in x_terms::<K, B, D>(kind, axis.lanes::<B>().0, &held).iter().zip(at.chunks_exact_mut(B::WIDTH)) {
+                t.store(to);
+            }
+        }
+    }
     // Indices, not zipped iterators: see `write_aligned_band`.
     for j in 0..batch.rows {
         weights[1] = B::splat(batch.fade[j]);
         let row = Row { frac: &[], fade: &[], weights, off_line: off_rest || batch.frac[j] != 0.0 };
-        row.write_runs(kind, (chunks, chunk_axis), &BatchRecords { table, per_point, row: j }, (&mut out[j * nx..(j + 1) * nx], false));
+        let records = BatchRecords { table, per_point, row: j };
+        let out = (&mut out[j * nx..(j + 1) * nx], false);
+        if K::X_TERM {
+            row.write_runs_from_terms(kind, (chunks, chunk_axis, terms), &records, out);
+        } else {
+            row.write_runs(kind, (chunks, chunk_axis), &records, out);
+        }
     }
 }
 
 /// [`write_batch`]'s rows where each is `N` (1, 2 or 4) whole chunks, each
-/// inside one cell (`cells`: chunk k's; `ONE_CELL`: all the same), such as
+/// inside one cell (`chunks`; `ONE_CELL`: all in the same), such as
 /// a tile inside a cell or across a few: the chunks' positions and fades
 /// held in registers down the batch, so a row costs its corners' splats
 /// (once, or once a chunk), its points and its stores. (Through [`Row::write_runs`],
@@ -1474,16 +1521,25 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
 fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize, const ONE_CELL: bool>(
     kind: &K,
     batch: &RowBatch<'_, D>,
-    (chunk_axis, cells): (&[ChunkAxis], &[usize; HELD_BAND_CHUNKS]),
+    (chunk_axis, chunks): (&[ChunkAxis], &[Chunk]),
     records: &BatchRecords<'_>,
     (mut weights, off_rest): ([B; D], bool),
     out: &mut [f32],
 ) {
     let w = B::WIDTH;
-    let mut axis = [(B::cst(0.0), B::cst(0.0)); N];
-    for (a, c) in axis.iter_mut().zip(chunk_axis) {
-        *a = c.lanes::<B>();
+    // `held` is `chunks.len()`: this always takes the chunks.
+    let Some(chunks) = chunks.first_chunk::<N>() else { return };
+    // Each chunk's fades, and its corners' terms in x ([`Lattice::x_term`]),
+    // the same for every row of the batch: formed from its first row's.
+    let mut fades = [B::cst(0.0); N];
+    let mut terms = [[B::cst(0.0); MAX_CORNERS]; N];
+    let first = BatchRecords { row: 0, ..*records };
+    for (k, (ch, axis)) in chunks.iter().zip(chunk_axis).enumerate() {
+        let x;
+        (x, fades[k]) = axis.lanes::<B>();
+        terms[k] = x_terms::<K, B, D>(kind, x, &first.held::<D>(ch.cell, K::BOUND));
     }
+    let axis = (&terms, &fades);
     for j in 0..batch.rows.min(out.len() / (N * w)) {
         weights[1] = B::splat(batch.fade[j]);
         let row = Row { frac: &[], fade: &[], weights, off_line: off_rest || batch.frac[j] != 0.0 };
@@ -1491,9 +1547,9 @@ fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize,
         let out = &mut out[j * N * w..(j + 1) * N * w];
         // `off_line` once a row, not once a chunk.
         if row.off_line {
-            row.write_held::<K, N, true, ONE_CELL>(kind, &axis, (&records, cells), out);
+            row.write_held::<K, N, true, ONE_CELL>(kind, axis, (&records, chunks), out);
         } else {
-            row.write_held::<K, N, false, ONE_CELL>(kind, &axis, (&records, cells), out);
+            row.write_held::<K, N, false, ONE_CELL>(kind, axis, (&records, chunks), out);
         }
     }
 }
@@ -2286,9 +2342,15 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
     /// [`Row::exact_at`] with its `off_line` known ([`corner_values`]).
     #[inline(always)]
     fn exact_with<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, x: B, fade: B, rec: &impl Source<B>) -> B {
+        self.exact_from_terms::<K, OFF_LINE>(kind, &x_terms::<K, B, D>(kind, x, rec), fade, rec)
+    }
+
+    /// [`Row::exact_with`] from the corners' terms in `x` ([`x_terms`]).
+    #[inline(always)]
+    fn exact_from_terms<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, terms: &[B; MAX_CORNERS], fade: B, rec: &impl Source<B>) -> B {
         let mut weights = self.weights;
         weights[0] = fade;
-        finish(kind, interpolate(corner_values::<K, B, D, OFF_LINE>(kind, x, rec), weights))
+        finish(kind, interpolate(corner_values_from_terms::<K, B, D, OFF_LINE>(kind, terms, rec), weights))
     }
 
     /// A whole row of long runs (`chunks`, `chunk_axis`) into `out` (the
@@ -2305,23 +2367,42 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
         (out, prefetch): (&mut [f32], bool),
     ) {
         if self.off_line {
-            self.write_runs_with::<K, true>(kind, (chunks, chunk_axis), corners, (out, prefetch))
+            self.write_runs_with::<K, true, false>(kind, (chunks, chunk_axis, &[]), corners, (out, prefetch))
         } else {
-            self.write_runs_with::<K, false>(kind, (chunks, chunk_axis), corners, (out, prefetch))
+            self.write_runs_with::<K, false, false>(kind, (chunks, chunk_axis, &[]), corners, (out, prefetch))
         }
     }
 
+    /// [`Row::write_runs`] with each chunk's corners' terms in x formed
+    /// already: `terms`, `1 << D` registers a chunk ([`write_batch`]).
     #[inline(always)]
-    fn write_runs_with<K: Lattice<D>, const OFF_LINE: bool>(
+    fn write_runs_from_terms<K: Lattice<D>>(
         &self,
         kind: &K,
-        (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
+        (chunks, chunk_axis, terms): (&[Chunk], &[ChunkAxis], &[f32]),
+        corners: &impl RunCorners<B>,
+        (out, prefetch): (&mut [f32], bool),
+    ) {
+        if self.off_line {
+            self.write_runs_with::<K, true, true>(kind, (chunks, chunk_axis, terms), corners, (out, prefetch))
+        } else {
+            self.write_runs_with::<K, false, true>(kind, (chunks, chunk_axis, terms), corners, (out, prefetch))
+        }
+    }
+
+    /// `TERMS`: the chunks' terms in x come from `terms`.
+    #[inline(always)]
+    fn write_runs_with<K: Lattice<D>, const OFF_LINE: bool, const TERMS: bool>(
+        &self,
+        kind: &K,
+        (chunks, chunk_axis, terms): (&[Chunk], &[ChunkAxis], &[f32]),
         corners: &impl RunCorners<B>,
         (out, prefetch): (&mut [f32], bool),
     ) {
         let Some(first) = chunks.first() else { return };
         let (mut at, mut held) = (first.cell, corners.held::<D>(first.cell, K::BOUND));
-        for (ch, axis) in chunks.iter().zip(chunk_axis) {
+        let per_chunk = (1 << D) * B::WIDTH;
+        for (i, (ch, axis)) in chunks.iter().zip(chunk_axis).enumerate() {
             if ch.cell != at {
                 (at, held) = (ch.cell, corners.held::<D>(ch.cell, K::BOUND));
             }
@@ -2329,29 +2410,39 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
             if prefetch {
                 crate::lanes::prefetch_store(out.as_ptr().wrapping_add(ch.start + ROW_PREFETCH_AHEAD));
             }
-            emit(self.exact_with::<K, OFF_LINE>(kind, x, fade, &held), &mut out[ch.start..]);
+            let chunk_terms = if TERMS {
+                let mut t = [B::cst(0.0); MAX_CORNERS];
+                for (term, from) in t.iter_mut().zip(terms[i * per_chunk..(i + 1) * per_chunk].chunks_exact(B::WIDTH)) {
+                    *term = B::from_slice(from);
+                }
+                t
+            } else {
+                x_terms::<K, B, D>(kind, x, &held)
+            };
+            emit(self.exact_from_terms::<K, OFF_LINE>(kind, &chunk_terms, fade, &held), &mut out[ch.start..]);
         }
     }
 
-    /// [`write_held_rows`]' row: `N` whole chunks at positions and fades
-    /// `axis`, chunk k in cell `cells[k]` of `records` (`ONE_CELL`: all in
-    /// `cells[0]`). (Reading the corners again only where the cell changes
-    /// cost a 32² tile inside a cell 9 % more instructions on AVX2.)
+    /// [`write_held_rows`]' row: `N` whole chunks with their corners' terms
+    /// in x and their fades (`axis`), chunk k in cell `chunks[k].cell` of
+    /// `records` (`ONE_CELL`: all in the first's). (Reading the corners again
+    /// only where the cell changes cost a 32² tile inside a cell 9 % more
+    /// instructions on AVX2.)
     #[inline(always)]
     fn write_held<K: Lattice<D>, const N: usize, const OFF_LINE: bool, const ONE_CELL: bool>(
         &self,
         kind: &K,
-        axis: &[(B, B); N],
-        (records, cells): (&BatchRecords<'_>, &[usize; HELD_BAND_CHUNKS]),
+        (terms, fades): (&[[B; MAX_CORNERS]; N], &[B; N]),
+        (records, chunks): (&BatchRecords<'_>, &[Chunk; N]),
         out: &mut [f32],
     ) {
         let w = B::WIDTH;
-        let mut held = records.held::<D>(cells[0], K::BOUND);
-        for (k, &(x, fade)) in axis.iter().enumerate() {
+        let mut held = records.held::<D>(chunks[0].cell, K::BOUND);
+        for k in 0..N {
             if !ONE_CELL && k > 0 {
-                held = records.held::<D>(cells[k], K::BOUND);
+                held = records.held::<D>(chunks[k].cell, K::BOUND);
             }
-            self.exact_with::<K, OFF_LINE>(kind, x, fade, &held).store(&mut out[k * w..(k + 1) * w]);
+            self.exact_from_terms::<K, OFF_LINE>(kind, &terms[k], fades[k], &held).store(&mut out[k * w..(k + 1) * w]);
         }
     }
 
@@ -2400,18 +2491,38 @@ fn off_line<const D: usize>(f: [f32; D]) -> bool {
 
 /// The values of a chunk's corners at positions `x` along axis 0, from
 /// their bound records; `OFF_LINE` for a row off the lattice lines.
-/// Only corner 0's zero can reach the result ([`Lattice::eval_unsigned_zero`]).
 #[inline(always)]
 fn corner_values<K: Lattice<D>, B: BatchLanes, const D: usize, const OFF_LINE: bool>(
     kind: &K,
     x: B,
     rec: &impl Source<B>,
 ) -> [B; MAX_CORNERS] {
+    corner_values_from_terms::<K, B, D, OFF_LINE>(kind, &x_terms::<K, B, D>(kind, x, rec), rec)
+}
+
+/// Each corner's [`Lattice::x_term`] at positions `x` along axis 0.
+#[inline(always)]
+fn x_terms<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, x: B, rec: &impl Source<B>) -> [B; MAX_CORNERS] {
     let xm1 = x - B::cst(1.0);
+    let mut terms = [B::cst(0.0); MAX_CORNERS];
+    for (c, term) in terms.iter_mut().enumerate().take(1 << D) {
+        *term = kind.x_term(&rec.corner(c, K::BOUND), if c & 1 == 1 { xm1 } else { x });
+    }
+    terms
+}
+
+/// [`corner_values`] from the corners' terms in `x` ([`x_terms`]). Only
+/// corner 0's zero can reach the result ([`Lattice::eval_unsigned_zero`]).
+#[inline(always)]
+fn corner_values_from_terms<K: Lattice<D>, B: BatchLanes, const D: usize, const OFF_LINE: bool>(
+    kind: &K,
+    terms: &[B; MAX_CORNERS],
+    rec: &impl Source<B>,
+) -> [B; MAX_CORNERS] {
     let mut v = [B::cst(0.0); MAX_CORNERS];
     for c in 0..(1 << D) {
-        let (bound, at) = (rec.corner(c, K::BOUND), if c & 1 == 1 { xm1 } else { x });
-        v[c] = if OFF_LINE || c != 0 { kind.eval_unsigned_zero(&bound, at) } else { kind.eval(&bound, at) };
+        let bound = rec.corner(c, K::BOUND);
+        v[c] = if OFF_LINE || c != 0 { kind.eval_unsigned_zero_from_x_term(&bound, terms[c]) } else { kind.eval_from_x_term(&bound, terms[c]) };
     }
     v
 }

@@ -215,10 +215,18 @@ macro_rules! modified_lattice {
                 b
             }
 
+            /// Axis 0's product: its gradient component passes through `bind`.
+            const X_TERM: bool = true;
+
+            #[inline(always)]
+            fn x_term<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
+                b.f[0] * x
+            }
+
             /// The dot product, summed from axis 0 up.
             #[inline(always)]
-            fn eval<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
-                let mut dot = b.f[0] * x;
+            fn eval_from_x_term<L: Lanes>(&self, b: &Corner<L>, term: L) -> L {
+                let mut dot = term;
                 for d in 1..D {
                     dot = dot + b.f[d];
                 }

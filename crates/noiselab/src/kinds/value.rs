@@ -80,7 +80,7 @@ impl<const D: usize> Lattice<D> for Value {
     }
 
     #[inline(always)]
-    fn eval<L: Lanes>(&self, bound: &Corner<L>, _x: L) -> L {
+    fn eval_from_x_term<L: Lanes>(&self, bound: &Corner<L>, _term: L) -> L {
         bound.f[0]
     }
 
