@@ -270,11 +270,7 @@ impl<const D: usize> Lattice<D> for Classic {
     /// `f[0]` keeps axis 0's gradient component; `f[d]` becomes `r_d · g_d`.
     #[inline(always)]
     fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L> {
-        let mut b = corner;
-        for d in 1..D {
-            b.f[d] = offset[d] * corner.f[d];
-        }
-        b
+        corner.bind_gradient(offset)
     }
 
     /// `rx·gx`: the gradient's x passes through `bind`.
@@ -288,11 +284,7 @@ impl<const D: usize> Lattice<D> for Classic {
     /// `rx·gx + ry·gy + rz·gz`, summed from x, as the C code.
     #[inline(always)]
     fn eval_from_x_term<L: Lanes>(&self, b: &Corner<L>, term: L) -> L {
-        let mut dot = term;
-        for d in 1..D {
-            dot = dot + b.f[d];
-        }
-        dot
+        b.gradient_dot_from_x_term::<D>(term)
     }
 }
 

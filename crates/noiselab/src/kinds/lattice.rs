@@ -65,6 +65,29 @@ impl<L: Lanes> Corner<L> {
     pub fn zero() -> Self {
         Corner { f: [L::cst(0.0); 4], i: [L::Int::splat(0); 2] }
     }
+
+    /// [`Lattice::bind`] for a gradient record (`f`: its components) whose
+    /// value is the dot product with the offset (classic and modified
+    /// noise): `f[0]` kept, `f[d]` becomes the term `g_d · offset_d`.
+    #[inline(always)]
+    pub fn bind_gradient<const D: usize>(self, offset: [L; D]) -> Self {
+        let mut b = self;
+        for d in 1..D {
+            b.f[d] = self.f[d] * offset[d];
+        }
+        b
+    }
+
+    /// The dot product of a [`Corner::bind_gradient`] record from its term
+    /// in x (`x · g₀`), summed from axis 0 up as the reference C code does.
+    #[inline(always)]
+    pub fn gradient_dot_from_x_term<const D: usize>(&self, term: L) -> L {
+        let mut dot = term;
+        for d in 1..D {
+            dot = dot + self.f[d];
+        }
+        dot
+    }
 }
 
 /// A lattice noise: values from the 2^D corners of the cell around a point,
@@ -1142,7 +1165,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             (true, false) if whole => {
                 let records = CellRecords { columns: records, fields: bound_fields };
                 let to = staging.target(&mut out[o0..]);
-                row.write_runs(kind, (chunks, chunk_axis), &records, (to, prefetch));
+                row.write_runs(kind, (chunks, chunk_axis, None), &records, (to, prefetch));
                 staging.flush::<B>(&mut out[o0..o0 + n]);
             }
             (true, true) if whole => {
@@ -1493,17 +1516,14 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
             }
         }
     }
+    let formed = if K::X_TERM { Some(&terms[..]) } else { None };
     // Indices, not zipped iterators: see `write_aligned_band`.
     for j in 0..batch.rows {
         weights[1] = B::splat(batch.fade[j]);
         let row = Row { frac: &[], fade: &[], weights, off_line: off_rest || batch.frac[j] != 0.0 };
         let records = BatchRecords { table, per_point, row: j };
         let out = (&mut out[j * nx..(j + 1) * nx], false);
-        if K::X_TERM {
-            row.write_runs_from_terms(kind, (chunks, chunk_axis, terms), &records, out);
-        } else {
-            row.write_runs(kind, (chunks, chunk_axis), &records, out);
-        }
+        row.write_runs(kind, (chunks, chunk_axis, formed), &records, out);
     }
 }
 
@@ -1528,7 +1548,10 @@ fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize,
 ) {
     let w = B::WIDTH;
     // `held` is `chunks.len()`: this always takes the chunks.
-    let Some(chunks) = chunks.first_chunk::<N>() else { return };
+    let Some(chunks) = chunks.first_chunk::<N>() else {
+        debug_assert!(false, "write_batch holds {N} chunks a row, not {}", chunks.len());
+        return;
+    };
     // Each chunk's fades, and its corners' terms in x ([`Lattice::x_term`]),
     // the same for every row of the batch: formed from its first row's.
     let mut fades = [B::cst(0.0); N];
@@ -2358,35 +2381,22 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
     /// first chunk comes, and held while its chunks go by. (Chunk by chunk,
     /// 2D improved re-read eight fields for every 8 points; slicing the
     /// chunks run by run cost as much in bookkeeping for runs of 4.)
+    /// `terms`: each chunk's corners' terms in x formed already, `1 << D`
+    /// registers a chunk ([`write_batch`]); `None`: formed here.
     #[inline(always)]
     fn write_runs<K: Lattice<D>>(
         &self,
         kind: &K,
-        (chunks, chunk_axis): (&[Chunk], &[ChunkAxis]),
+        (chunks, chunk_axis, terms): (&[Chunk], &[ChunkAxis], Option<&[f32]>),
         corners: &impl RunCorners<B>,
-        (out, prefetch): (&mut [f32], bool),
+        out: (&mut [f32], bool),
     ) {
-        if self.off_line {
-            self.write_runs_with::<K, true, false>(kind, (chunks, chunk_axis, &[]), corners, (out, prefetch))
-        } else {
-            self.write_runs_with::<K, false, false>(kind, (chunks, chunk_axis, &[]), corners, (out, prefetch))
-        }
-    }
-
-    /// [`Row::write_runs`] with each chunk's corners' terms in x formed
-    /// already: `terms`, `1 << D` registers a chunk ([`write_batch`]).
-    #[inline(always)]
-    fn write_runs_from_terms<K: Lattice<D>>(
-        &self,
-        kind: &K,
-        (chunks, chunk_axis, terms): (&[Chunk], &[ChunkAxis], &[f32]),
-        corners: &impl RunCorners<B>,
-        (out, prefetch): (&mut [f32], bool),
-    ) {
-        if self.off_line {
-            self.write_runs_with::<K, true, true>(kind, (chunks, chunk_axis, terms), corners, (out, prefetch))
-        } else {
-            self.write_runs_with::<K, false, true>(kind, (chunks, chunk_axis, terms), corners, (out, prefetch))
+        let runs = (chunks, chunk_axis, terms.unwrap_or(&[]));
+        match (self.off_line, terms.is_some()) {
+            (true, true) => self.write_runs_with::<K, true, true>(kind, runs, corners, out),
+            (true, false) => self.write_runs_with::<K, true, false>(kind, runs, corners, out),
+            (false, true) => self.write_runs_with::<K, false, true>(kind, runs, corners, out),
+            (false, false) => self.write_runs_with::<K, false, false>(kind, runs, corners, out),
         }
     }
 

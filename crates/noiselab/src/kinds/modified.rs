@@ -208,11 +208,7 @@ macro_rules! modified_lattice {
             /// term `g_d · offset_d`.
             #[inline(always)]
             fn bind<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> Corner<L> {
-                let mut b = corner;
-                for d in 1..D {
-                    b.f[d] = corner.f[d] * offset[d];
-                }
-                b
+                corner.bind_gradient(offset)
             }
 
             /// Axis 0's product: its gradient component passes through `bind`.
@@ -226,11 +222,7 @@ macro_rules! modified_lattice {
             /// The dot product, summed from axis 0 up.
             #[inline(always)]
             fn eval_from_x_term<L: Lanes>(&self, b: &Corner<L>, term: L) -> L {
-                let mut dot = term;
-                for d in 1..D {
-                    dot = dot + b.f[d];
-                }
-                dot
+                b.gradient_dot_from_x_term::<D>(term)
             }
 
             #[inline(always)]
