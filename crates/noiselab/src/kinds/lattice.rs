@@ -1619,6 +1619,9 @@ fn fill_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let bound_fields = PointRows::<D>::PER_PLANE * K::BOUND.total();
     let mut plane: Option<[i32; D]> = None;
     let mut slot_of = [0usize; MAX_CORNERS / 2];
+    // Consecutive chunks that start at whole registers (one cell a column:
+    // every chunk but those after a skipped cell).
+    let aligned = !near && chunk_axis.iter().all(|a| a.first % B::WIDTH == 0);
     for RowPiece { idx, offset, .. } in span.rows(out.len()) {
         let (cell, f) = row_cells(kind, &span, idx);
         if plane != Some(cell) {
@@ -1632,6 +1635,8 @@ fn fill_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let off = off_line(f);
         if near {
             FineRow { points: NearPoints(&view), chunk_axis, weights }.write::<K>(kind, off, out);
+        } else if aligned {
+            FineRow { points: AlignedPointsAt(&view), chunk_axis, weights }.write::<K>(kind, off, out);
         } else {
             FineRow { points: PointsAt(&view), chunk_axis, weights }.write::<K>(kind, off, out);
         }
@@ -1721,6 +1726,41 @@ impl<B: BatchLanes> FinePoints<B> for PointsAt<'_> {
     #[inline(always)]
     fn chunk(&self, axis: &ChunkAxis) -> impl Source<B> {
         At { entries: self.0, at: axis.first }
+    }
+}
+
+/// Bound records in a row's table, lane j of a chunk at its first cell
+/// plus j, the first at a whole register: each next entry permuted out of
+/// two aligned loads. (Loaded from `first + 1`, it straddles two of the
+/// row's bind's stores, which a load cannot take forwarded while they are
+/// in flight, as they are in rows as short as a 32² tile's.)
+struct AlignedPointsAt<'a>(&'a Entries<'a>);
+
+impl<B: BatchLanes> FinePoints<B> for AlignedPointsAt<'_> {
+    #[inline(always)]
+    fn chunk(&self, axis: &ChunkAxis) -> impl Source<B> {
+        AlignedAt { entries: self.0, at: axis.first, next: B::iota().add_c(1) }
+    }
+}
+
+/// [`AlignedPointsAt`]'s lanes: entries `at..at + WIDTH`, `at` a multiple
+/// of the width, and the entries after them (`next`: each lane's plus one,
+/// of the two registers from `at`).
+struct AlignedAt<'a, B: BatchLanes> {
+    entries: &'a Entries<'a>,
+    at: usize,
+    next: B::Int,
+}
+
+impl<B: BatchLanes> Source<B> for AlignedAt<'_, B> {
+    #[inline(always)]
+    fn field(&self, k: usize, next: usize) -> B {
+        let lo = self.entries.load(k, self.at);
+        if next == 0 {
+            lo
+        } else {
+            B::permute2(lo, self.entries.load(k, self.at + B::WIDTH), self.next)
+        }
     }
 }
 
