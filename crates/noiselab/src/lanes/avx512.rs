@@ -258,6 +258,18 @@ impl BatchLanes for X16 {
         I16(unsafe { _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) })
     }
     #[inline(always)]
+    fn grid_coords(origin: f64, step: f64, first: i32) -> Self {
+        // Two halves of eight in f64 (exact conversions, then the scalar's
+        // multiply, add and rounding), joined into one register.
+        unsafe {
+            let i = _mm512_add_epi32(_mm512_set1_epi32(first), Self::iota().0);
+            let (o, s) = (_mm512_set1_pd(origin), _mm512_set1_pd(step));
+            let lo = _mm512_cvtpd_ps(_mm512_add_pd(o, _mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_castsi512_si256(i)), s)));
+            let hi = _mm512_cvtpd_ps(_mm512_add_pd(o, _mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_extracti64x4_epi64::<1>(i)), s)));
+            X16(_mm512_castpd_ps(_mm512_insertf64x4::<1>(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi))))
+        }
+    }
+    #[inline(always)]
     fn store_int(v: I16, out: &mut [i32]) {
         let out = &mut out[..16];
         unsafe { _mm512_storeu_si512(out.as_mut_ptr().cast(), v.0) }

@@ -181,6 +181,18 @@ pub trait BatchLanes: Lanes<Elem = f32> {
     fn store_streamed(self, out: &mut [f32]);
     /// Integer lanes 0, 1, …, WIDTH − 1.
     fn iota() -> Self::Int;
+    /// A regular axis's coordinates at indices `first, first + 1, …`:
+    /// `(origin + i · step) as f32`, the same IEEE operations as the
+    /// scalar expression in `f64`, so the same bits (see `Grid::write_axes`,
+    /// which stores them a register at a time).
+    #[inline(always)]
+    fn grid_coords(origin: f64, step: f64, first: i32) -> Self {
+        let mut values = [0f32; 16];
+        for (i, c) in (first..).zip(values.iter_mut().take(Self::WIDTH)) {
+            *c = (origin + f64::from(i) * step) as f32;
+        }
+        Self::from_slice(&values)
+    }
     /// Write integer lanes to `out[..WIDTH]`.
     fn store_int(v: Self::Int, out: &mut [i32]);
     /// Integer lanes from `v[..WIDTH]`.
