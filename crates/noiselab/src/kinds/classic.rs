@@ -278,7 +278,7 @@ impl<const D: usize> Lattice<D> for Classic {
 
     #[inline(always)]
     fn x_term<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
-        x * b.f[0]
+        b.gradient_x_term(x)
     }
 
     /// `rx·gx + ry·gy + rz·gz`, summed from x, as the C code.

@@ -305,7 +305,7 @@ impl<const D: usize> Lattice<D> for Improved {
         if D == 4 {
             x
         } else {
-            x * b.f[0]
+            b.gradient_x_term(x)
         }
     }
 

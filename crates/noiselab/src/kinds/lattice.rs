@@ -78,8 +78,17 @@ impl<L: Lanes> Corner<L> {
         b
     }
 
+    /// The term in x of a record whose `f[0]` is axis 0's gradient
+    /// component or coefficient (classic, modified and 1D–3D improved
+    /// noise): `x · f[0]`.
+    #[inline(always)]
+    pub fn gradient_x_term(&self, x: L) -> L {
+        x * self.f[0]
+    }
+
     /// The dot product of a [`Corner::bind_gradient`] record from its term
-    /// in x (`x · g₀`), summed from axis 0 up as the reference C code does.
+    /// in x ([`Corner::gradient_x_term`]), summed from axis 0 up as the
+    /// reference C code does.
     #[inline(always)]
     pub fn gradient_dot_from_x_term<const D: usize>(&self, term: L) -> L {
         let mut dot = term;

@@ -216,7 +216,7 @@ macro_rules! modified_lattice {
 
             #[inline(always)]
             fn x_term<L: Lanes>(&self, b: &Corner<L>, x: L) -> L {
-                b.f[0] * x
+                b.gradient_x_term(x)
             }
 
             /// The dot product, summed from axis 0 up.
