@@ -112,6 +112,12 @@ impl<const D: usize> Grid<D> {
     /// checks of a 32² tile's axes took 3 % of its fast fill (perf,
     /// AVX-512).
     fn write_axes(&self, axes: core::ops::Range<usize>, out: &mut [f32]) {
+        self.write_axes_at(best_level(), axes, out)
+    }
+
+    /// [`Grid::write_axes`] at `level` (the best the CPU has up to it).
+    #[cfg_attr(not(all(feature = "std", target_arch = "x86_64")), allow(unused_variables))]
+    fn write_axes_at(&self, level: SimdLevel, axes: core::ops::Range<usize>, out: &mut [f32]) {
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         {
             #[target_feature(enable = "avx512f")]
@@ -122,8 +128,8 @@ impl<const D: usize> Grid<D> {
             unsafe fn avx2<const D: usize>(grid: &Grid<D>, axes: core::ops::Range<usize>, out: &mut [f32]) {
                 grid.write_axes_here::<crate::lanes::avx2::X8>(axes, out)
             }
-            match best_level() {
-                // SAFETY: the CPU reports the level's features.
+            match runnable(level) {
+                // SAFETY: `runnable` never exceeds the features the CPU reports.
                 SimdLevel::Avx512 => return unsafe { avx512(self, axes, out) },
                 SimdLevel::Avx2 => return unsafe { avx2(self, axes, out) },
                 SimdLevel::Baseline => {}
@@ -148,10 +154,11 @@ impl<const D: usize> Grid<D> {
     #[inline(always)]
     fn write_axis_here<B: BatchLanes>(&self, d: usize, out: &mut [f32]) {
         let (origin, step) = (self.origin[d], self.step[d]);
-        // Counting in `i32` where it fits: its conversion to `f64` vectorises
-        // at the baseline instruction set, `usize`'s does not. Both are exact,
-        // so the coordinates are `coord`'s.
-        if i32::try_from(out.len()).is_ok() {
+        // Counting in `i32` where it fits (with a register to spare past the
+        // end): its conversion to `f64` vectorises at the baseline
+        // instruction set, `usize`'s does not. Both are exact, so the
+        // coordinates are `coord`'s.
+        if i32::try_from(out.len() + 2 * B::WIDTH).is_ok() {
             // A register at a time: the batch fills load an axis a register
             // at a time right after, and a load that spans two stores
             // still in flight waits for both to reach the cache. (As one
@@ -159,7 +166,9 @@ impl<const D: usize> Grid<D> {
             // remainder: its 32-byte stores under AVX-512's 64-byte loads
             // cost a 32² tile of 2D improved about 8 % of its time, perf.
             // On AVX2, LLVM stores a register joined from two halves as the
-            // two halves, so there the loads still wait.)
+            // two halves, so there the loads still wait; on Zen 3 keeping
+            // it whole measured no faster.) The last register's lanes past
+            // the end are dropped.
             let w = B::WIDTH;
             let mut first = 0i32;
             let mut blocks = out.chunks_exact_mut(w);
@@ -167,8 +176,9 @@ impl<const D: usize> Grid<D> {
                 B::grid_coords(origin, step, first).store(block);
                 first += w as i32;
             }
-            for (i, c) in (first..).zip(blocks.into_remainder()) {
-                *c = (origin + f64::from(i) * step) as f32;
+            let rest = blocks.into_remainder();
+            if !rest.is_empty() {
+                store_prefix(B::grid_coords(origin, step, first), rest);
             }
         } else {
             for (i, c) in out.iter_mut().enumerate() {
@@ -1010,8 +1020,11 @@ mod tests {
             let want: Vec<f32> = (0..2).flat_map(|d| (0..grid.size[d]).map(move |i| grid.coord(d, i) as f32)).collect();
             let mut got = vec![0f32; want.len()];
             let same = |got: &[f32]| got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()));
-            grid.write_axes(0..2, &mut got);
-            assert!(same(&got), "best level: {got:?}");
+            for level in SimdLevel::available() {
+                got.fill(0.0);
+                grid.write_axes_at(level, 0..2, &mut got);
+                assert!(same(&got), "{level:?}: {got:?}");
+            }
             grid.write_axes_here::<crate::lanes::F32x8>(0..2, &mut got);
             assert!(same(&got), "8 portable lanes: {got:?}");
             grid.write_axes_here::<crate::lanes::F32x16>(0..2, &mut got);
