@@ -1025,8 +1025,10 @@ mod tests {
                 grid.write_axes_at(level, 0..2, &mut got);
                 assert!(same(&got), "{level:?}: {got:?}");
             }
+            got.fill(0.0);
             grid.write_axes_here::<crate::lanes::F32x8>(0..2, &mut got);
             assert!(same(&got), "8 portable lanes: {got:?}");
+            got.fill(0.0);
             grid.write_axes_here::<crate::lanes::F32x16>(0..2, &mut got);
             assert!(same(&got), "16 portable lanes: {got:?}");
         }
