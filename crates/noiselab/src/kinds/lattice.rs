@@ -375,15 +375,25 @@ fn bind_plane<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let hashed = hashed.entries(rows * K::HASHED.total(), 0, whole_lanes);
     let mut bound = bound.entries_mut(rows * K::BOUND.total(), 0, whole_lanes);
     let mut offset_of = [[B::cst(0.0); D]; MAX_CORNERS / 2];
-    for (r, o) in offset_of.iter_mut().enumerate().take(rows) {
+    // Each row's slot as a view of its own, so that the reads below check
+    // no runtime field, and the loop bound in the views' own terms (below):
+    // as `v + WIDTH ≤ whole_lanes` over one view, which a wrapping sum does
+    // not tie to their `at ≤ width − WIDTH`, every read and store kept its
+    // check. A 32² tile at 1/2 on AVX2 (callgrind): 40 → 22 instructions a
+    // register of both rows.
+    let mut slots = [hashed; MAX_CORNERS / 2];
+    for (r, (o, view)) in offset_of.iter_mut().zip(&mut slots).enumerate().take(rows) {
         *o = offsets(f, 2 * r);
+        *view = hashed.fields(slot_of[r] * K::HASHED.total(), K::HASHED.total());
     }
-    // (`v + WIDTH ≤ whole_lanes`, not `v < points`: the same lanes, in
-    // terms that let the views' checks fold.)
+    // (`v ≤ whole_lanes − WIDTH`, not `v < points`: the same lanes.)
+    let Some(last) = whole_lanes.checked_sub(B::WIDTH) else {
+        return;
+    };
     let mut v = 0;
-    while v + B::WIDTH <= whole_lanes {
-        for (r, &slot) in slot_of.iter().enumerate().take(rows) {
-            let point = At { entries: &hashed, at: v }.record(slot * K::HASHED.total(), 0, K::HASHED);
+    while v <= last {
+        for (r, slot) in slots.iter().enumerate().take(rows) {
+            let point = At { entries: slot, at: v }.record(0, 0, K::HASHED);
             store_record(&mut bound, r * K::BOUND.total(), v, &kind.bind(point, offset_of[r]), K::BOUND);
         }
         v += B::WIDTH;

@@ -204,6 +204,7 @@ impl Columns {
 }
 
 /// Some entries of a [`Columns`], bounds-checked as a whole.
+#[derive(Clone, Copy)]
 pub(crate) struct Entries<'a> {
     from: &'a [f32],
     stride: usize,
@@ -211,7 +212,19 @@ pub(crate) struct Entries<'a> {
     width: usize,
 }
 
-impl Entries<'_> {
+impl<'a> Entries<'a> {
+    /// Fields `first..first + count` of the same entries, as a view of
+    /// their own, checked here once: reads through it check their field
+    /// against `count`, a constant where the caller's is, rather than
+    /// against a runtime choice of fields (a plane's slot) read by read.
+    #[inline(always)]
+    pub(crate) fn fields(&self, first: usize, count: usize) -> Entries<'a> {
+        assert!(first <= self.fields && count <= self.fields - first);
+        // `from` holds `(fields − 1)·stride + width` values or more (see
+        // `get`); from field `first` on, `(count − 1)·stride + width`.
+        Entries { from: &self.from[first * self.stride..], stride: self.stride, fields: count, width: self.width }
+    }
+
     /// Field `field` of the entry `at` past the first.
     #[inline(always)]
     pub(crate) fn get(&self, field: usize, at: usize) -> f32 {
