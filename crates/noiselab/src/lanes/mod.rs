@@ -529,11 +529,39 @@ mod tests {
         }
     }
 
+    /// Integral values of every size: small, at and past ±2³¹ and ±2⁶³,
+    /// the largest finite, infinities and NaN.
+    fn integral() -> Vec<f64> {
+        let two31 = 2147483648.0;
+        let two63 = 9223372036854775808.0;
+        let mut v = vec![0.0, -0.0, 1.0, -1.0, 255.0, -256.0, 16777216.0, -16777217.0];
+        v.extend([two31 - 128.0, two31, -two31, -two31 - 256.0, 2.0 * two31, 3e9, -3e9, 5e9 + 7.0]);
+        v.extend([1e18, -1e18, two63, -two63, 2.0 * two63, 1e30, -1e30, f64::from(f32::MAX)]);
+        v.extend([f64::MAX, f64::INFINITY, f64::NEG_INFINITY, f64::NAN]);
+        v
+    }
+
+    /// `to_int_wrapping` gives `x as i64 as i32` (saturating, then wrapping)
+    /// in every lane, whether a lane's value fits the plain conversion or
+    /// takes the path past it.
+    #[inline(always)]
+    fn check_wrapping<B: BatchLanes>() {
+        let v: Vec<f32> = integral().iter().map(|&x| x as f32).collect();
+        let w = B::WIDTH;
+        for i in 0..v.len() - w {
+            let got = B::from_slice(&v[i..i + w]).to_int_wrapping();
+            for k in 0..w {
+                assert_eq!(got.lane(k), v[i + k] as i64 as i32, "{}", v[i + k]);
+            }
+        }
+    }
+
     /// The properties the tests below check, each on any lanes.
     #[derive(Clone, Copy)]
     enum Property {
         NonnegativeMinMax,
         LookupsOfFour,
+        Wrapping,
     }
 
     #[inline(always)]
@@ -541,6 +569,7 @@ mod tests {
         match property {
             Property::NonnegativeMinMax => check::<B>(),
             Property::LookupsOfFour => check_lookup::<B>(),
+            Property::Wrapping => check_wrapping::<B>(),
         }
     }
 
@@ -574,6 +603,17 @@ mod tests {
     #[test]
     fn lookups_of_four_are_lookups_of_one() {
         at_every_level(Property::LookupsOfFour);
+    }
+
+    /// Conversions to integers wrap alike in scalar `f32` and `f64` and in
+    /// every level's lanes.
+    #[test]
+    fn conversions_wrap_alike() {
+        for x in integral() {
+            assert_eq!(Lanes::to_int_wrapping(x), x as i64 as i32, "{x}");
+            assert_eq!(Lanes::to_int_wrapping(x as f32), x as f32 as i64 as i32, "{x}");
+        }
+        at_every_level(Property::Wrapping);
     }
 
     /// The integer minimum and maximum that x86 takes for them are the

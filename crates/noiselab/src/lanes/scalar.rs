@@ -200,7 +200,7 @@ macro_rules! scalar_lanes {
                 if t != i32::MIN {
                     t
                 } else {
-                    self as i64 as i32
+                    wrap_far(f64::from(self))
                 }
             }
             #[inline(always)]
@@ -225,6 +225,17 @@ macro_rules! scalar_lanes {
 
 scalar_lanes!(f32, math::floor32, math::sqrt32, libm::powf, truncate32, lookup16_f32, get_f32);
 scalar_lanes!(f64, math::floor64, math::sqrt64, libm::pow, truncate64, Table16::double, get);
+
+/// [`Lanes::to_int_wrapping`] of a value that a plain conversion does not
+/// take (|x| ≥ 2³¹, or NaN): `as i64` saturates (NaN → 0), the second cast
+/// wraps. Out of line and cold, so the common path stays a conversion and
+/// a branch: inlined, LLVM formed both results and picked one (3D improved
+/// in `f64`, AVX2 clone, callgrind: 218 → 206 instructions a point).
+#[cold]
+#[inline(never)]
+fn wrap_far(x: f64) -> i32 {
+    x as i64 as i32
+}
 
 /// [`Lanes::lookup16`] in `f32`.
 #[inline(always)]
