@@ -1324,7 +1324,7 @@ struct RowBatch<'a, const D: usize> {
     /// (whole lanes of entries: those past the batch are read, not used).
     frac: &'a [f32],
     fade: &'a [f32],
-    /// The batch's positions on axes 2.. (`[0]` and `[1]` unused).
+    /// The batch's positions on axes 2.. (`[0]` and `[1]` at 0).
     f: [f32; D],
 }
 
@@ -1482,18 +1482,11 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
 ) {
     let per_point = PointRows::<D>::PER_PLANE * K::BOUND.total();
     // The rows in lanes: positions on axis 1, one row a lane; on axes 2..
-    // the batch's own, in every lane.
-    let mut fs = [B::cst(0.0); D];
+    // the batch's own in every lane, with their fades and whether they are
+    // off the lattice lines there (axis 1 of `batch.f` is at 0).
+    let (mut weights, mut fs) = row_lanes::<K, B, D>(kind, batch.f);
     fs[1] = B::from_slice(batch.frac);
-    // Every row's fades on axes 2.. and whether they are off the lattice
-    // lines there.
-    let mut weights = [B::cst(0.0); D];
-    let mut off_rest = false;
-    for d in 2..D {
-        fs[d] = B::splat(batch.f[d]);
-        weights[d] = B::splat(kind.fade(batch.f[d]));
-        off_rest |= batch.f[d] != 0.0;
-    }
+    let off_rest = off_line(batch.f);
     // A loop, not `array::from_fn`: LLVM left that call out of line, outside
     // the batch driver's instruction-set clone (a tenth of a 32² tile's
     // instructions on AVX2, with a memcpy of the array).
@@ -1713,15 +1706,9 @@ fn fill_held_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: 
                 *h = At { entries: &view, at: j * w }.record(slot * K::HASHED.total(), 0, K::HASHED);
             }
         }
-        // Positions and fades on axes 2.., for the whole run.
-        let mut fs = [B::cst(0.0); D];
-        let mut weights = [B::cst(0.0); D];
-        let mut off_rest = false;
-        for d in 2..D {
-            fs[d] = B::splat(f[d]);
-            weights[d] = B::splat(kind.fade(f[d]));
-            off_rest |= f[d] != 0.0;
-        }
+        // Axes 2.. for the whole run; axis 1 row by row.
+        let (mut weights, mut fs) = row_lanes::<K, B, D>(kind, f);
+        let off_rest = off_line(f);
         for y in y0..y1 {
             fs[1] = B::splat(frac1[y]);
             weights[1] = B::splat(fade1[y]);
@@ -2470,32 +2457,41 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
         out: (&mut [f32], bool),
     ) {
         let runs = (chunks, chunk_axis, terms.unwrap_or(&[]));
-        match (self.off_line, terms.is_some()) {
-            (true, true) => self.write_runs_with::<K, true, true>(kind, runs, corners, out),
-            (true, false) => self.write_runs_with::<K, true, false>(kind, runs, corners, out),
-            (false, true) => self.write_runs_with::<K, false, true>(kind, runs, corners, out),
-            (false, false) => self.write_runs_with::<K, false, false>(kind, runs, corners, out),
+        // (The batches, which form the terms, never prefetch.)
+        match (self.off_line, terms.is_some(), out.1) {
+            (true, true, _) => self.write_runs_with::<K, true, true, false>(kind, runs, corners, out.0),
+            (false, true, _) => self.write_runs_with::<K, false, true, false>(kind, runs, corners, out.0),
+            (true, false, true) => self.write_runs_with::<K, true, false, true>(kind, runs, corners, out.0),
+            (true, false, false) => self.write_runs_with::<K, true, false, false>(kind, runs, corners, out.0),
+            (false, false, true) => self.write_runs_with::<K, false, false, true>(kind, runs, corners, out.0),
+            (false, false, false) => self.write_runs_with::<K, false, false, false>(kind, runs, corners, out.0),
         }
     }
 
-    /// `TERMS`: the chunks' terms in x come from `terms`.
+    /// `TERMS`: the chunks' terms in x come from `terms`; `PREFETCH`: each
+    /// chunk asks for its line [`ROW_PREFETCH_AHEAD`] values ahead. (A
+    /// constant, and one check for a whole register's store: 2D improved
+    /// over 2048² at 1/32, AVX2, callgrind: 5.93 → 5.53 instructions a
+    /// sample; 3D over 128³ 8.99 → 8.72.)
     #[inline(always)]
-    fn write_runs_with<K: Lattice<D>, const OFF_LINE: bool, const TERMS: bool>(
+    fn write_runs_with<K: Lattice<D>, const OFF_LINE: bool, const TERMS: bool, const PREFETCH: bool>(
         &self,
         kind: &K,
         (chunks, chunk_axis, terms): (&[Chunk], &[ChunkAxis], &[f32]),
         corners: &impl RunCorners<B>,
-        (out, prefetch): (&mut [f32], bool),
+        out: &mut [f32],
     ) {
         let Some(first) = chunks.first() else { return };
         let (mut at, mut held) = (first.cell, corners.held::<D>(first.cell, K::BOUND));
         let per_chunk = (1 << D) * B::WIDTH;
+        // The last start of a whole register in `out`.
+        let last_whole = out.len().checked_sub(B::WIDTH);
         for (i, (ch, axis)) in chunks.iter().zip(chunk_axis).enumerate() {
             if ch.cell != at {
                 (at, held) = (ch.cell, corners.held::<D>(ch.cell, K::BOUND));
             }
             let (x, fade) = axis.lanes::<B>();
-            if prefetch {
+            if PREFETCH {
                 crate::lanes::prefetch_store(out.as_ptr().wrapping_add(ch.start + ROW_PREFETCH_AHEAD));
             }
             let chunk_terms = if TERMS {
@@ -2507,7 +2503,13 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
             } else {
                 x_terms::<K, B, D>(kind, x, &held)
             };
-            emit(self.exact_from_terms::<K, OFF_LINE>(kind, &chunk_terms, fade, &held), &mut out[ch.start..]);
+            let v = self.exact_from_terms::<K, OFF_LINE>(kind, &chunk_terms, fade, &held);
+            // A whole register where it fits (one check, no overflow to
+            // test), else a part at the end of `out`.
+            match last_whole {
+                Some(last) if ch.start <= last => v.store(&mut out[ch.start..ch.start + B::WIDTH]),
+                _ => emit(v, &mut out[ch.start..]),
+            }
         }
     }
 
