@@ -494,8 +494,8 @@ mod tests {
     fn check<L: Lanes<Elem = f32>>() {
         let v = nonnegative();
         let w = L::WIDTH;
-        for i in 0..v.len() - w {
-            for j in 0..v.len() - w {
+        for i in 0..=v.len() - w {
+            for j in 0..=v.len() - w {
                 let (a, b) = (L::from_slice(&v[i..i + w]), L::from_slice(&v[j..j + w]));
                 for (want, got) in [(a.min(b), a.min_nonnegative(b)), (a.max(b), a.max_nonnegative(b))] {
                     for k in 0..w {

@@ -193,9 +193,9 @@ macro_rules! scalar_lanes {
             #[inline(always)]
             fn to_int_wrapping(self) -> i32 {
                 // One truncating conversion where the value fits (as the
-                // vector lanes do); `as i64` saturates (NaN → 0), the second
-                // cast wraps. (Saturating at once took five more instructions
-                // an axis, on a scalar point's critical path.)
+                // vector lanes do); the rest go to `wrap_far`. (Saturating at
+                // once took five more instructions an axis, on a scalar
+                // point's critical path.)
                 let t = $truncate(self);
                 if t != i32::MIN {
                     t
