@@ -93,29 +93,36 @@ impl Improved {
     /// corners it leads to; 1D and 2D continue the 3D chain with zero
     /// coordinates. Tiled, each corner's cell wraps first. Only corner 0's
     /// chain is followed unless `all`.
+    #[inline(always)]
+    fn chain<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D], all: bool) -> [L::Int; MAX_CORNERS] {
+        let (mut h, twice) = self.links::<L, D>(first, cells, all);
+        self.perm.at_each(&mut h[..if all { 1 << D } else { 1 }], twice);
+        h
+    }
+
+    /// [`Improved::chain`] up to its last lookup: the indices whose entries
+    /// are the corners' hashes, and whether they are read from p∘p (1D and
+    /// 2D: the link of axis 1, or of axis 0 in 1D, followed by the zero
+    /// coordinate of axis 2, both in one lookup, the same entries).
     ///
     /// Written level by level with constant counts, not as a loop, so that
     /// LLVM unrolls it and keeps the hashes in registers.
     #[inline(always)]
-    fn chain<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D], all: bool) -> [L::Int; MAX_CORNERS] {
+    fn links<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D], all: bool) -> ([L::Int; MAX_CORNERS], bool) {
         let mut h = [L::Int::splat(0); MAX_CORNERS];
         h[..2].copy_from_slice(&first);
-        // The link of axis 1; in 1D and 2D, followed by the zero coordinate
-        // of axis 2: both in one lookup of p∘p, the same entries.
         if D > 1 {
             self.branch::<L::Int, 2>(&mut h, cells[1], 1);
         }
-        let count = if D > 1 { 4 } else { 2 };
-        self.perm.at_each(&mut h[..if all { count } else { 1 }], D <= 2);
         if D > 2 {
+            self.perm.at_each(&mut h[..if all { 4 } else { 1 }], false);
             self.branch::<L::Int, 4>(&mut h, cells[2], 2);
-            self.perm.at_each(&mut h[..if all { 8 } else { 1 }], false);
         }
         if D > 3 {
+            self.perm.at_each(&mut h[..if all { 8 } else { 1 }], false);
             self.branch::<L::Int, 8>(&mut h, cells[3], 3);
-            self.perm.at_each(&mut h[..if all { 16 } else { 1 }], false);
         }
-        h
+        (h, D <= 2)
     }
 
     /// The next axis's indices of the `COUNT` chains in `h`: each chain
@@ -129,45 +136,57 @@ impl Improved {
         }
     }
 
-    /// The records of lattice points from their hashes: the hash (4D) or
-    /// the gradient's coefficients (1D–3D), looked up once per lattice point
-    /// rather than once per grid row in `bind` (3D points on AVX2 17.3 →
-    /// 13.0 ns).
+    /// The records of all corners of `cells` (from each lane's `p[X]`,
+    /// `p[X + 1]`): the hash (4D) or the gradient's coefficients (1D–3D),
+    /// looked up once per lattice point rather than once per grid row in
+    /// `bind` (3D points on AVX2 17.3 → 13.0 ns). The coefficients come
+    /// with the chain's last lookup ([`Permutation::at_each_then16`]).
     #[inline(always)]
-    fn records<L: Lanes, const D: usize>(&self, h: &[L::Int; MAX_CORNERS]) -> [Corner<L>; MAX_CORNERS] {
+    fn records<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
         if D == 4 {
+            let h = self.chain::<L, D>(first, cells, true);
             // Each record built whole from its hash, so nothing is zeroed first
             // (see `lattice::float_records`): 3D points on AVX2 20.4 → 17.5 ns.
             core::array::from_fn(|c| self.record::<L, D>(h[c]))
         } else {
+            let (h, twice) = self.links::<L, D>(first, cells, true);
+            let mut gradients = [[L::cst(0.0); 3]; MAX_CORNERS];
+            self.perm.at_each_then16(&h[..1 << D], twice, self.gradient_tables(), &mut gradients[..1 << D]);
             let mut floats = [[L::cst(0.0); 4]; MAX_CORNERS];
-            for (f, &hc) in floats.iter_mut().zip(h).take(1 << D) {
-                *f = self.coefficients::<L, D>(hc);
+            for (f, &g) in floats.iter_mut().zip(&gradients).take(1 << D) {
+                *f = Self::coefficients::<L, D>(g);
             }
             lattice::float_records(&floats)
         }
     }
 
-    /// [`Improved::records`] for one lattice point.
+    /// [`Improved::records`] for one lattice point, from its hash.
     #[inline(always)]
     fn record<L: Lanes, const D: usize>(&self, h: L::Int) -> Corner<L> {
         let zero = Corner::zero();
         if D == 4 {
             Corner { i: [h, zero.i[1]], f: zero.f }
         } else {
-            Corner { i: zero.i, f: self.coefficients::<L, D>(h) }
+            let [cx, cy, cz] = self.gradient_tables();
+            Corner { i: zero.i, f: Self::coefficients::<L, D>([L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h)]) }
         }
     }
 
-    /// The 3D gradient's coefficient on each axis for hash `h`. In 1D and
-    /// 2D, `f[2]` holds instead the terms of the axes the point lies at 0
-    /// on (2D: axis 2; 1D: axes 1 and 2, summed as `bind` would): the same
-    /// for every row, so formed once per lattice point rather than per row
-    /// in `bind` (the same operations, so the same bits).
+    /// The 3D gradient's coefficient tables (one per axis) of the variant.
     #[inline(always)]
-    fn coefficients<L: Lanes, const D: usize>(&self, h: L::Int) -> [L; 4] {
-        let [cx, cy, cz] = &GRADIENTS[self.variant as usize];
-        let mut c = [L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h), L::cst(0.0)];
+    fn gradient_tables(&self) -> [&Table16; 3] {
+        let [x, y, z] = &GRADIENTS[self.variant as usize];
+        [x, y, z]
+    }
+
+    /// A record's floats from the 3D gradient's coefficient on each axis.
+    /// In 1D and 2D, `f[2]` holds instead the terms of the axes the point
+    /// lies at 0 on (2D: axis 2; 1D: axes 1 and 2, summed as `bind` would):
+    /// the same for every row, so formed once per lattice point rather than
+    /// per row in `bind` (the same operations, so the same bits).
+    #[inline(always)]
+    fn coefficients<L: Lanes, const D: usize>(g: [L; 3]) -> [L; 4] {
+        let mut c = [g[0], g[1], g[2], L::cst(0.0)];
         let zero = L::cst(0.0);
         if D == 2 {
             c[2] = pick(zero, c[2]);
@@ -262,7 +281,7 @@ impl<const D: usize> Lattice<D> for Improved {
     fn corners<L: Lanes>(&self, cells: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
         let mut first = [self.index(cells[0], 0, 0), self.index(cells[0], 0, 1)];
         self.perm.at_each(&mut first, false);
-        self.records::<L, D>(&self.chain::<L, D>(first, cells, true))
+        self.records::<L, D>(first, cells)
     }
 
     /// Untiled, a row's `p[X]` are consecutive entries of the table: one

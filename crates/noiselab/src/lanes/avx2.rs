@@ -230,6 +230,29 @@ impl Lanes for X8 {
         }
     }
     #[inline(always)]
+    fn lookup256_then16x4<const T: usize>(table: &Table256, idx: [I8; 4], floats: [&Table16; T]) -> [[Self; T]; 4] {
+        let bytes = lookup_packed(table, pack_bytes(idx));
+        if floats.iter().any(|f| f.halves().is_none()) {
+            return super::lookup16_each(unpack_bytes(bytes), floats);
+        }
+        let mut out = [[X8(unsafe { _mm256_setzero_ps() }); T]; 4];
+        unsafe {
+            let nibbles = _mm256_and_si256(bytes, _mm256_set1_epi8(15));
+            for (t, f) in floats.iter().enumerate() {
+                let Some([low, high]) = f.halves() else { continue };
+                let low = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(low.as_ptr().cast())), nibbles);
+                let high = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(high.as_ptr().cast())), nibbles);
+                // Each entry's upper 16 bits as a word: vectors a, b in the
+                // first, c, d in the second, each then moved to its lanes' tops.
+                let words = [_mm256_unpacklo_epi8(low, high), _mm256_unpackhi_epi8(low, high)];
+                for (k, values) in out.iter_mut().enumerate() {
+                    values[t] = X8(_mm256_castsi256_ps(_mm256_shuffle_epi8(words[k / 2], words_to_top(k % 2))));
+                }
+            }
+        }
+        out
+    }
+    #[inline(always)]
     fn lookup8(table: &[f32; 8], idx: I8) -> Self {
         // The permute reads the low three bits of each index.
         X8(unsafe { _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.as_ptr()), idx.0) })
@@ -383,46 +406,7 @@ impl IntLanes for I8 {
     }
     #[inline(always)]
     fn lookup256x4(table: &Table256, idx: [Self; 4]) -> [Self; 4] {
-        // The 32 indices' low bytes in one register. Sixteen byte shuffles,
-        // one per sixteen-entry row of the table, each look up the low
-        // nibbles; a tree of blends then picks the row by bits 4, 5, 6 and
-        // 7. About 60 operations for 32 lookups, against four instructions
-        // and a store-forwarding stall per lane with scalar loads (Zen 3's
-        // gathers measured slower still: 3.6 ns for eight lanes).
-        unsafe {
-            let byte = _mm256_set1_epi32(255);
-            let [a, b, c, d] = idx;
-            let (a, b) = (_mm256_and_si256(a.0, byte), _mm256_and_si256(b.0, byte));
-            let (c, d) = (_mm256_and_si256(c.0, byte), _mm256_and_si256(d.0, byte));
-            // Per 128-bit half: a b c d's first four lanes, then their last four.
-            let bytes = _mm256_packus_epi16(_mm256_packus_epi32(a, b), _mm256_packus_epi32(c, d));
-            let low = _mm256_and_si256(bytes, _mm256_set1_epi8(15));
-            // `blendv` reads bit 7 of each byte: shift bit 4 (5, 6) there.
-            let (bit4, bit5, bit6) = (_mm256_slli_epi16::<3>(bytes), _mm256_slli_epi16::<2>(bytes), _mm256_slli_epi16::<1>(bytes));
-            let mut pairs = [_mm256_setzero_si256(); 8];
-            // No closure for a row's shuffle: it would not inherit AVX2.
-            for (rows, p) in table.0.chunks_exact(32).zip(pairs.iter_mut()) {
-                let even = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_load_si128(rows.as_ptr().cast())), low);
-                let odd = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_load_si128(rows[16..].as_ptr().cast())), low);
-                *p = _mm256_blendv_epi8(even, odd, bit4);
-            }
-            let mut quads = [_mm256_setzero_si256(); 4];
-            for (j, q) in quads.iter_mut().enumerate() {
-                *q = _mm256_blendv_epi8(pairs[2 * j], pairs[2 * j + 1], bit5);
-            }
-            let lower = _mm256_blendv_epi8(quads[0], quads[1], bit6);
-            let upper = _mm256_blendv_epi8(quads[2], quads[3], bit6);
-            let picked = _mm256_blendv_epi8(lower, upper, bytes);
-            // Unpacking with zeros undoes the packs' interleaving.
-            let zero = _mm256_setzero_si256();
-            let (ab, cd) = (_mm256_unpacklo_epi8(picked, zero), _mm256_unpackhi_epi8(picked, zero));
-            [
-                I8(_mm256_unpacklo_epi16(ab, zero)),
-                I8(_mm256_unpackhi_epi16(ab, zero)),
-                I8(_mm256_unpacklo_epi16(cd, zero)),
-                I8(_mm256_unpackhi_epi16(cd, zero)),
-            ]
-        }
+        unpack_bytes(lookup_packed(table, pack_bytes(idx)))
     }
     #[inline(always)]
     fn lookup16(table: &[i32; 16], idx: Self) -> Self {
@@ -450,4 +434,78 @@ impl IntLanes for I8 {
         }
         I8::from_array(out)
     }
+}
+
+/// The low bytes of four vectors a, b, c, d in one register, in each
+/// 128-bit half `a b c d` four lanes each: lanes 0–3 in the lower half,
+/// 4–7 in the upper (the interleaving of the packs).
+#[inline(always)]
+fn pack_bytes(idx: [I8; 4]) -> __m256i {
+    unsafe {
+        let byte = _mm256_set1_epi32(255);
+        // No `map`: its closure would not inherit AVX2.
+        let [a, b, c, d] = idx;
+        let (a, b) = (_mm256_and_si256(a.0, byte), _mm256_and_si256(b.0, byte));
+        let (c, d) = (_mm256_and_si256(c.0, byte), _mm256_and_si256(d.0, byte));
+        _mm256_packus_epi16(_mm256_packus_epi32(a, b), _mm256_packus_epi32(c, d))
+    }
+}
+
+/// The four vectors of [`pack_bytes`]' layout, zero-extended.
+#[inline(always)]
+fn unpack_bytes(bytes: __m256i) -> [I8; 4] {
+    unsafe {
+        // Unpacking with zeros undoes the packs' interleaving.
+        let zero = _mm256_setzero_si256();
+        let (ab, cd) = (_mm256_unpacklo_epi8(bytes, zero), _mm256_unpackhi_epi8(bytes, zero));
+        [
+            I8(_mm256_unpacklo_epi16(ab, zero)),
+            I8(_mm256_unpackhi_epi16(ab, zero)),
+            I8(_mm256_unpacklo_epi16(cd, zero)),
+            I8(_mm256_unpackhi_epi16(cd, zero)),
+        ]
+    }
+}
+
+/// `table[i]` for each of 32 bytes `i`. Sixteen byte shuffles, one per
+/// sixteen-entry row of the table, each look up the low nibbles; a tree of
+/// blends then picks the row by bits 4, 5, 6 and 7. About 60 operations
+/// for 32 lookups (packing and unpacking included), against four
+/// instructions and a store-forwarding stall per lane with scalar loads
+/// (Zen 3's gathers measured slower still: 3.6 ns for eight lanes).
+#[inline(always)]
+fn lookup_packed(table: &Table256, bytes: __m256i) -> __m256i {
+    unsafe {
+        let low = _mm256_and_si256(bytes, _mm256_set1_epi8(15));
+        // `blendv` reads bit 7 of each byte: shift bit 4 (5, 6) there.
+        let (bit4, bit5, bit6) = (_mm256_slli_epi16::<3>(bytes), _mm256_slli_epi16::<2>(bytes), _mm256_slli_epi16::<1>(bytes));
+        let mut pairs = [_mm256_setzero_si256(); 8];
+        // No closure for a row's shuffle: it would not inherit AVX2.
+        for (rows, p) in table.0.chunks_exact(32).zip(pairs.iter_mut()) {
+            let even = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_load_si128(rows.as_ptr().cast())), low);
+            let odd = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_load_si128(rows[16..].as_ptr().cast())), low);
+            *p = _mm256_blendv_epi8(even, odd, bit4);
+        }
+        let mut quads = [_mm256_setzero_si256(); 4];
+        for (j, q) in quads.iter_mut().enumerate() {
+            *q = _mm256_blendv_epi8(pairs[2 * j], pairs[2 * j + 1], bit5);
+        }
+        let lower = _mm256_blendv_epi8(quads[0], quads[1], bit6);
+        let upper = _mm256_blendv_epi8(quads[2], quads[3], bit6);
+        _mm256_blendv_epi8(lower, upper, bytes)
+    }
+}
+
+/// Shuffle controls that move 16-bit word `4·j + i` of each 128-bit half
+/// to the top of 32-bit lane `i` (zeros below): lanes of vector `j` of a
+/// pair unpacked from [`pack_bytes`]' layout.
+#[inline(always)]
+fn words_to_top(j: usize) -> __m256i {
+    const fn lane(j: usize, i: usize) -> i32 {
+        let byte = (8 * j + 2 * i) as i32;
+        0x8080 | byte << 16 | (byte + 1) << 24
+    }
+    let [a, b] = [[lane(0, 0), lane(0, 1), lane(0, 2), lane(0, 3)], [lane(1, 0), lane(1, 1), lane(1, 2), lane(1, 3)]];
+    let c = if j == 0 { a } else { b };
+    unsafe { _mm256_setr_epi32(c[0], c[1], c[2], c[3], c[0], c[1], c[2], c[3]) }
 }

@@ -158,6 +158,16 @@ pub trait Lanes:
     /// (one permute on AVX2 and AVX-512, where [`Lanes::lookup16`] takes
     /// two and a blend on AVX2).
     fn lookup8(table: &[f32; 8], idx: Self::Int) -> Self;
+    /// For each of four index vectors, its bytes `table[idx & 255]` and
+    /// then each of `floats` at them: `[k][t]` is
+    /// `lookup16(floats[t], lookup256(table, idx[k]))`. AVX2 keeps the 32
+    /// bytes packed between the two lookups where every table has
+    /// [`Table16::halves`]: two byte shuffles a table, where unpacking the
+    /// bytes and [`Lanes::lookup16`] take two permutes and a blend a vector.
+    #[inline(always)]
+    fn lookup256_then16x4<const T: usize>(table: &Table256, idx: [Self::Int; 4], floats: [&Table16; T]) -> [[Self; T]; 4] {
+        lookup16_each(Self::Int::lookup256x4(table, idx), floats)
+    }
 
     /// `self * self`.
     #[inline(always)]
@@ -294,6 +304,7 @@ pub struct Table256(pub [u8; 256]);
 pub struct Table16 {
     single: [f32; 16],
     double: [f64; 256],
+    halves: Option<[[u8; 16]; 2]>,
 }
 
 impl Table16 {
@@ -305,7 +316,23 @@ impl Table16 {
             double[k] = entries[k % 16] as f64;
             k += 1;
         }
-        Table16 { single: entries, double }
+        let (mut low, mut high, mut two_bytes) = ([0; 16], [0; 16], true);
+        let mut k = 0;
+        while k < 16 {
+            let bits = entries[k].to_bits();
+            two_bytes &= bits & 0xFFFF == 0;
+            (low[k], high[k]) = ((bits >> 16) as u8, (bits >> 24) as u8);
+            k += 1;
+        }
+        Table16 { single: entries, double, halves: if two_bytes { Some([low, high]) } else { None } }
+    }
+
+    /// Bits 16–23 and 24–31 of each entry in `f32`, where every entry's
+    /// lower sixteen bits are zero (±1, ±0, ±0.5 …): the entries are then
+    /// two bytes each, which byte shuffles can look up.
+    #[inline(always)]
+    pub fn halves(&self) -> Option<&[[u8; 16]; 2]> {
+        self.halves.as_ref()
     }
 
     /// The entries in `f32`.
@@ -319,6 +346,19 @@ impl Table16 {
     pub fn double(&self, i: i32) -> f64 {
         self.double[(i & 255) as usize]
     }
+}
+
+/// `[k][t] = L::lookup16(floats[t], bytes[k])`: [`Lanes::lookup256_then16x4`]
+/// after its first lookup.
+#[inline(always)]
+pub(crate) fn lookup16_each<L: Lanes, const T: usize>(bytes: [L::Int; 4], floats: [&Table16; T]) -> [[L; T]; 4] {
+    let mut out = [[L::cst(0.0); T]; 4];
+    for (values, b) in out.iter_mut().zip(bytes) {
+        for (v, table) in values.iter_mut().zip(floats) {
+            *v = L::lookup16(table, b);
+        }
+    }
+    out
 }
 
 /// Linear interpolation `a + t·(b − a)`, the form every reference uses
@@ -507,9 +547,17 @@ mod tests {
     }
 
     /// `lookup256x4` gives each lane `table[idx & 255]`, on indices of
-    /// every sign and size.
+    /// every sign and size, and `lookup256_then16x4` each float table's
+    /// entry at that byte's low nibble, bit for bit: with tables of two-byte
+    /// entries (±0, ±1, ±0.5, ±2, ±3: [`Table16::halves`]) and with one
+    /// that has none (so the lookup takes the lane-wise way), alone or
+    /// beside the others.
     #[inline(always)]
     fn check_lookup<B: BatchLanes>() {
+        let two_bytes = Table16::new([1.0, -1.0, 0.0, -0.0, 0.5, -0.5, 2.0, -2.0, 3.0, -3.0, 1.0, 0.0, -1.0, 0.0, 0.5, 1.0]);
+        let reversed = Table16::new(core::array::from_fn(|k| two_bytes.single()[15 - k]));
+        let wide = Table16::new(core::array::from_fn(|k| 0.1 * k as f32 - 0.7));
+        assert!(two_bytes.halves().is_some() && reversed.halves().is_some() && wide.halves().is_none());
         let table = Table256(core::array::from_fn(|i| (i as u8).wrapping_mul(167).wrapping_add(13)));
         let mut state = 0x2545_F491u32;
         let mut idx = vec![0i32; 64 * B::WIDTH];
@@ -524,6 +572,17 @@ mod tests {
                 for k in 0..B::WIDTH {
                     let i = four[v * B::WIDTH + k];
                     assert_eq!(got.lane(k), table.0[(i & 255) as usize] as i32, "index {i}");
+                }
+            }
+            for floats in [[&two_bytes, &reversed], [&two_bytes, &wide], [&wide, &wide]] {
+                for (v, values) in B::lookup256_then16x4(&table, vectors, floats).iter().enumerate() {
+                    for (t, value) in values.iter().enumerate() {
+                        for k in 0..B::WIDTH {
+                            let i = four[v * B::WIDTH + k];
+                            let want = floats[t].single()[(table.0[(i & 255) as usize] & 15) as usize];
+                            assert_eq!(value.lane(k).to_bits(), want.to_bits(), "index {i}, table {t}");
+                        }
+                    }
                 }
             }
         }
