@@ -14,7 +14,7 @@
 //! ([`Accuracy::Exact`]); lattice kinds hash once per cell instead of once
 //! per point (`kinds::lattice`), fractals fill octave by octave.
 
-use crate::lanes::{BatchLanes, Lanes};
+use crate::lanes::{BatchLanes, IntLanes, Lanes};
 use crate::noise::Noise;
 use alloc::vec::Vec;
 use core::fmt;
@@ -933,6 +933,9 @@ fn lanes_of<B: BatchLanes, const D: usize>(pc: &[[f32; D]]) -> [B; D] {
     if B::LEVEL == SimdLevel::Avx512 && D > 1 && pc.len() == B::WIDTH {
         return deinterleave::<B, D>(pc.as_flattened());
     }
+    if B::LEVEL == SimdLevel::Avx2 && D == 3 && pc.len() == B::WIDTH {
+        return deinterleave_coprime::<B, D>(pc.as_flattened());
+    }
     let mut p = [B::splat(0.0); D];
     for (d, pd) in p.iter_mut().enumerate() {
         let mut xs = [0f32; 16];
@@ -979,6 +982,41 @@ fn deinterleave<B: BatchLanes, const D: usize>(flat: &[f32]) -> [B; D] {
     p
 }
 
+/// [`deinterleave`] where D and WIDTH have no common factor (3D on AVX2,
+/// which has no two-register permute): coordinate k·D + d lies in lane
+/// (k·D + d) mod WIDTH of its register, a different lane for each k, so
+/// selects with constant masks (immediate blends) gather an axis's lanes
+/// from the D registers into one, and one permute puts them in order.
+/// Three operations an axis in 3D, where inserting a coordinate per lane
+/// took nine (4 M random 3D points of improved noise on AVX2, callgrind:
+/// 66.2 → 64.8 instructions a point).
+#[inline(always)]
+fn deinterleave_coprime<B: BatchLanes, const D: usize>(flat: &[f32]) -> [B; D] {
+    let w = B::WIDTH;
+    debug_assert!(D % 2 == 1, "WIDTH is a power of two");
+    let mut regs = [B::splat(0.0); D];
+    for (q, r) in regs.iter_mut().enumerate() {
+        *r = B::from_slice(&flat[q * w..]);
+    }
+    let mut p = [B::splat(0.0); D];
+    for (d, pd) in p.iter_mut().enumerate() {
+        // Lane `at % w` of the gathered register comes from register `at / w`.
+        let (mut from, mut order) = ([0i32; 16], [0i32; 16]);
+        for k in 0..w {
+            let at = k * D + d;
+            from[at % w] = (at / w) as i32;
+            order[k] = (at % w) as i32;
+        }
+        let from = B::load_int(&from);
+        let mut gathered = regs[0];
+        for (q, &r) in regs.iter().enumerate().skip(1) {
+            gathered = B::select(from.eq(B::Int::splat(q as i32)), r, gathered);
+        }
+        *pd = B::permute(gathered, B::load_int(&order));
+    }
+    p
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -990,12 +1028,17 @@ mod tests {
         fn check<B: BatchLanes, const D: usize>() {
             let w = B::WIDTH;
             let pts: Vec<[f32; D]> = (0..w).map(|k| core::array::from_fn(|d| (k * 10 + d) as f32)).collect();
-            let lanes = deinterleave::<B, D>(pts.as_flattened());
-            for (d, l) in lanes.iter().enumerate() {
-                let mut got = [0f32; 16];
-                l.store(&mut got);
-                let want: Vec<f32> = (0..w).map(|k| (k * 10 + d) as f32).collect();
-                assert_eq!(&got[..w], &want[..], "{D}D axis {d}, {w} lanes");
+            let mut ways = vec![deinterleave::<B, D>(pts.as_flattened())];
+            if D % 2 == 1 {
+                ways.push(deinterleave_coprime::<B, D>(pts.as_flattened()));
+            }
+            for (way, lanes) in ways.iter().enumerate() {
+                for (d, l) in lanes.iter().enumerate() {
+                    let mut got = [0f32; 16];
+                    l.store(&mut got);
+                    let want: Vec<f32> = (0..w).map(|k| (k * 10 + d) as f32).collect();
+                    assert_eq!(&got[..w], &want[..], "{D}D axis {d}, {w} lanes, way {way}");
+                }
             }
         }
         check::<crate::lanes::F32x16, 2>();
