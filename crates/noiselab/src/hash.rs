@@ -1,7 +1,7 @@
 //! Lattice hashing shared by the kinds: Perlin's permutation tables and a
 //! table-free integer hash.
 
-use crate::lanes::{BatchLanes, IntLanes, Lanes, Table16, Table256};
+use crate::lanes::{BatchLanes, IntLanes, Table256};
 use alloc::sync::Arc;
 
 /// Perlin's reference permutation of 0..=255 (Improving Noise, 2002; also used
@@ -113,31 +113,11 @@ impl Permutation {
         }
     }
 
-    /// `lookup16` of each of `floats` at [`Permutation::at`] (`twice`:
-    /// [`Permutation::twice`]) of each of `idx`: `out[c][t]` for `idx[c]`
-    /// and `floats[t]`. Four vectors at a time go to
-    /// [`Lanes::lookup256_then16x4`], a lone one by itself.
+    /// [`Permutation::at`] (or, `twice`, [`Permutation::twice`]) of bytes
+    /// ([`IntLanes::lookup_bytes`]).
     #[inline(always)]
-    pub fn at_each_then16<L: Lanes, const T: usize>(&self, idx: &[L::Int], twice: bool, floats: [&Table16; T], out: &mut [[L; T]]) {
-        let table = if twice { &self.tables.twice } else { &self.tables.lookup };
-        let n = idx.len();
-        for group in 0..n.div_ceil(4) {
-            let first = 4 * group;
-            if first + 1 == n {
-                let hash = L::Int::lookup256(table, idx[first]);
-                for (v, f) in out[first].iter_mut().zip(floats) {
-                    *v = L::lookup16(f, hash);
-                }
-            } else {
-                // As in `at_each`: no `array::from_fn`, no slice copies.
-                let last = n - 1;
-                let four = [idx[first], idx[first + 1], idx[(first + 2).min(last)], idx[(first + 3).min(last)]];
-                let looked = L::lookup256_then16x4(table, four, floats);
-                for (k, v) in looked.into_iter().enumerate().take(n - first) {
-                    out[first + k] = v;
-                }
-            }
-        }
+    pub fn at_bytes<I: IntLanes>(&self, b: I::Bytes, twice: bool) -> I::Bytes {
+        I::lookup_bytes(if twice { &self.tables.twice } else { &self.tables.lookup }, b)
     }
 
     /// `p[i]` per lane, for `0 ≤ i < 512` (the doubled table's range: the

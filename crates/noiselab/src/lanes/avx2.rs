@@ -22,6 +22,11 @@ pub(crate) struct X8(__m256);
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct I8(__m256i);
 
+/// Four vectors' low bytes in one `ymm` register ([`IntLanes::Bytes`]),
+/// laid out as [`pack_bytes`] packs them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bytes32(__m256i);
+
 /// Eight lane masks, each lane all ones (true) or all zeros (false).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct M8(__m256i);
@@ -230,20 +235,20 @@ impl Lanes for X8 {
         }
     }
     #[inline(always)]
-    fn lookup256_then16x4<const T: usize>(table: &Table256, idx: [I8; 4], floats: [&Table16; T]) -> [[Self; T]; 4] {
-        let bytes = lookup_packed(table, pack_bytes(idx));
+    fn lookup16_bytes<const T: usize>(bytes: Bytes32, floats: [&Table16; T]) -> [[Self; T]; 4] {
         if floats.iter().any(|f| f.halves().is_none()) {
-            return super::lookup16_each(unpack_bytes(bytes), floats);
+            return super::lookup16_each(I8::from_bytes(bytes), floats);
         }
         let mut out = [[X8(unsafe { _mm256_setzero_ps() }); T]; 4];
         unsafe {
-            let nibbles = _mm256_and_si256(bytes, _mm256_set1_epi8(15));
+            let nibbles = _mm256_and_si256(bytes.0, _mm256_set1_epi8(15));
             for (t, f) in floats.iter().enumerate() {
                 let Some([low, high]) = f.halves() else { continue };
                 let low = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(low.as_ptr().cast())), nibbles);
                 let high = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(high.as_ptr().cast())), nibbles);
-                // Each entry's upper 16 bits as a word: vectors a, b in the
-                // first, c, d in the second, each then moved to its lanes' tops.
+                // Each entry's upper 16 bits as a word: vectors 0 and 1 in
+                // the first, 2 and 3 in the second, each then moved to its
+                // lanes' tops.
                 let words = [_mm256_unpacklo_epi8(low, high), _mm256_unpackhi_epi8(low, high)];
                 for (k, values) in out.iter_mut().enumerate() {
                     values[t] = X8(_mm256_castsi256_ps(_mm256_shuffle_epi8(words[k / 2], words_to_top(k % 2))));
@@ -404,9 +409,32 @@ impl IntLanes for I8 {
         }
         I8::from_array(out)
     }
+    type Bytes = Bytes32;
     #[inline(always)]
-    fn lookup256x4(table: &Table256, idx: [Self; 4]) -> [Self; 4] {
-        unpack_bytes(lookup_packed(table, pack_bytes(idx)))
+    fn to_bytes(v: [Self; 4]) -> Bytes32 {
+        Bytes32(pack_bytes(v))
+    }
+    #[inline(always)]
+    fn from_bytes(b: Bytes32) -> [Self; 4] {
+        unpack_bytes(b.0)
+    }
+    #[inline(always)]
+    fn lookup_bytes(table: &Table256, b: Bytes32) -> Bytes32 {
+        Bytes32(lookup_packed(table, b.0))
+    }
+    #[inline(always)]
+    fn add_bytes(a: Bytes32, b: Bytes32) -> Bytes32 {
+        Bytes32(unsafe { _mm256_add_epi8(a.0, b.0) })
+    }
+    #[inline(always)]
+    fn pick_bytes(b: Bytes32, from: [usize; 4]) -> Bytes32 {
+        // Byte i of vector k in each half is byte 4·from[k] + i there.
+        let mut control = [0u8; 32];
+        for (at, c) in control.iter_mut().enumerate() {
+            let (k, i) = (at % 16 / 4, at % 4);
+            *c = (4 * from[k] + i) as u8;
+        }
+        Bytes32(unsafe { _mm256_shuffle_epi8(b.0, _mm256_loadu_si256(control.as_ptr().cast())) })
     }
     #[inline(always)]
     fn lookup16(table: &[i32; 16], idx: Self) -> Self {

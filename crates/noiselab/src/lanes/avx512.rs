@@ -313,6 +313,7 @@ macro_rules! int_op {
 
 impl IntLanes for I16 {
     type Mask = M16;
+    bytes_as_vectors!();
     #[inline(always)]
     fn splat(x: i32) -> Self {
         I16(unsafe { _mm512_set1_epi32(x) })

@@ -11,6 +11,35 @@
 //! Integer lanes ([`IntLanes`]) carry lattice coordinates and hashes. They are
 //! 32-bit and wrap on overflow in every build profile.
 
+/// [`IntLanes::Bytes`] as the four vectors themselves, each lane's low byte
+/// counting (every level but AVX2): the additions wrap as `i32`, the lookups
+/// and [`IntLanes::from_bytes`] mask.
+macro_rules! bytes_as_vectors {
+    () => {
+        type Bytes = [Self; 4];
+        #[inline(always)]
+        fn to_bytes(v: [Self; 4]) -> [Self; 4] {
+            v
+        }
+        #[inline(always)]
+        fn from_bytes(b: [Self; 4]) -> [Self; 4] {
+            [b[0].and_c(255), b[1].and_c(255), b[2].and_c(255), b[3].and_c(255)]
+        }
+        #[inline(always)]
+        fn lookup_bytes(table: &Table256, b: [Self; 4]) -> [Self; 4] {
+            [Self::lookup256(table, b[0]), Self::lookup256(table, b[1]), Self::lookup256(table, b[2]), Self::lookup256(table, b[3])]
+        }
+        #[inline(always)]
+        fn add_bytes(a: [Self; 4], b: [Self; 4]) -> [Self; 4] {
+            [a[0].add(b[0]), a[1].add(b[1]), a[2].add(b[2]), a[3].add(b[3])]
+        }
+        #[inline(always)]
+        fn pick_bytes(b: [Self; 4], from: [usize; 4]) -> [Self; 4] {
+            [b[from[0]], b[from[1]], b[from[2]], b[from[3]]]
+        }
+    };
+}
+
 // Used only by the batch drivers, which dispatch at run time with `std`.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 pub(crate) mod avx2;
@@ -158,15 +187,14 @@ pub trait Lanes:
     /// (one permute on AVX2 and AVX-512, where [`Lanes::lookup16`] takes
     /// two and a blend on AVX2).
     fn lookup8(table: &[f32; 8], idx: Self::Int) -> Self;
-    /// For each of four index vectors, its bytes `table[idx & 255]` and
-    /// then each of `floats` at them: `[k][t]` is
-    /// `lookup16(floats[t], lookup256(table, idx[k]))`. AVX2 keeps the 32
-    /// bytes packed between the two lookups where every table has
-    /// [`Table16::halves`]: two byte shuffles a table, where unpacking the
-    /// bytes and [`Lanes::lookup16`] take two permutes and a blend a vector.
+    /// Each of `floats` at each of the four vectors of `bytes`: `[k][t]` is
+    /// `lookup16(floats[t], vector k)`. AVX2 looks up the 32 bytes packed
+    /// where every table has [`Table16::halves`]: two byte shuffles a table,
+    /// where unpacking the bytes and [`Lanes::lookup16`] take two permutes
+    /// and a blend a vector.
     #[inline(always)]
-    fn lookup256_then16x4<const T: usize>(table: &Table256, idx: [Self::Int; 4], floats: [&Table16; T]) -> [[Self; T]; 4] {
-        lookup16_each(Self::Int::lookup256x4(table, idx), floats)
+    fn lookup16_bytes<const T: usize>(bytes: <Self::Int as IntLanes>::Bytes, floats: [&Table16; T]) -> [[Self; T]; 4] {
+        lookup16_each(Self::Int::from_bytes(bytes), floats)
     }
 
     /// `self * self`.
@@ -263,9 +291,23 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
     /// scalar loads.
     #[inline(always)]
     fn lookup256x4(table: &Table256, idx: [Self; 4]) -> [Self; 4] {
-        let [a, b, c, d] = idx;
-        [Self::lookup256(table, a), Self::lookup256(table, b), Self::lookup256(table, c), Self::lookup256(table, d)]
+        Self::from_bytes(Self::lookup_bytes(table, Self::to_bytes(idx)))
     }
+    /// Four vectors' lanes where only each lane's low byte counts: what a
+    /// chain of lookups in 256-entry byte tables carries from link to link.
+    /// AVX2 packs the 32 bytes into one register, so such a chain neither
+    /// unpacks nor repacks between its links; other levels keep the vectors.
+    type Bytes: Copy;
+    /// The four vectors' low bytes.
+    fn to_bytes(v: [Self; 4]) -> Self::Bytes;
+    /// The four vectors of the bytes, zero-extended.
+    fn from_bytes(b: Self::Bytes) -> [Self; 4];
+    /// Per byte: `table[b]`.
+    fn lookup_bytes(table: &Table256, b: Self::Bytes) -> Self::Bytes;
+    /// Per byte: `a + b`, wrapping at 256.
+    fn add_bytes(a: Self::Bytes, b: Self::Bytes) -> Self::Bytes;
+    /// The bytes whose vector `k` is vector `from[k]` of `b` (`from[k] < 4`).
+    fn pick_bytes(b: Self::Bytes, from: [usize; 4]) -> Self::Bytes;
     /// Per lane: `table[idx & 15]` (one permute on AVX-512).
     fn lookup16(table: &[i32; 16], idx: Self) -> Self;
     /// Per lane: `table[idx & 31]` (one two-table permute on AVX-512).
@@ -348,8 +390,8 @@ impl Table16 {
     }
 }
 
-/// `[k][t] = L::lookup16(floats[t], bytes[k])`: [`Lanes::lookup256_then16x4`]
-/// after its first lookup.
+/// `[k][t] = L::lookup16(floats[t], bytes[k])`: [`Lanes::lookup16_bytes`]
+/// on unpacked bytes.
 #[inline(always)]
 pub(crate) fn lookup16_each<L: Lanes, const T: usize>(bytes: [L::Int; 4], floats: [&Table16; T]) -> [[L; T]; 4] {
     let mut out = [[L::cst(0.0); T]; 4];
@@ -546,12 +588,12 @@ mod tests {
         }
     }
 
-    /// `lookup256x4` gives each lane `table[idx & 255]`, on indices of
-    /// every sign and size, and `lookup256_then16x4` each float table's
-    /// entry at that byte's low nibble, bit for bit: with tables of two-byte
-    /// entries (±0, ±1, ±0.5, ±2, ±3: [`Table16::halves`]) and with one
-    /// that has none (so the lookup takes the lane-wise way), alone or
-    /// beside the others.
+    /// On indices of every sign and size: `lookup256x4` gives each lane
+    /// `table[idx & 255]`; in bytes, additions wrap at 256 and picks move
+    /// whole vectors; `lookup16_bytes` gives each float table's entry at a
+    /// byte's low nibble, bit for bit, with tables of two-byte entries (±0,
+    /// ±1, ±0.5, ±2, ±3: [`Table16::halves`]) and with one that has none
+    /// (so the lookup takes the lane-wise way), alone or beside the others.
     #[inline(always)]
     fn check_lookup<B: BatchLanes>() {
         let two_bytes = Table16::new([1.0, -1.0, 0.0, -0.0, 0.5, -0.5, 2.0, -2.0, 3.0, -3.0, 1.0, 0.0, -1.0, 0.0, 0.5, 1.0]);
@@ -574,8 +616,19 @@ mod tests {
                     assert_eq!(got.lane(k), table.0[(i & 255) as usize] as i32, "index {i}");
                 }
             }
+            let shifted = [vectors[1], vectors[3], vectors[0], vectors[2]];
+            for from in [[0, 1, 2, 3], [3, 3, 0, 1], [2, 0, 1, 2]] {
+                let sums = B::Int::add_bytes(B::Int::to_bytes(vectors), B::Int::to_bytes(shifted));
+                for (v, got) in B::Int::from_bytes(B::Int::pick_bytes(sums, from)).into_iter().enumerate() {
+                    for k in 0..B::WIDTH {
+                        let (a, b) = (vectors[from[v]].lane(k), shifted[from[v]].lane(k));
+                        assert_eq!(got.lane(k), a.wrapping_add(b) & 255, "{a} + {b}, picked {from:?}");
+                    }
+                }
+            }
+            let looked = B::Int::lookup_bytes(&table, B::Int::to_bytes(vectors));
             for floats in [[&two_bytes, &reversed], [&two_bytes, &wide], [&wide, &wide]] {
-                for (v, values) in B::lookup256_then16x4(&table, vectors, floats).iter().enumerate() {
+                for (v, values) in B::lookup16_bytes(looked, floats).iter().enumerate() {
                     for (t, value) in values.iter().enumerate() {
                         for k in 0..B::WIDTH {
                             let i = four[v * B::WIDTH + k];

@@ -38,6 +38,7 @@ impl Elem for f64 {
 
 impl IntLanes for i32 {
     type Mask = bool;
+    bytes_as_vectors!();
     #[inline(always)]
     fn splat(x: i32) -> Self {
         x

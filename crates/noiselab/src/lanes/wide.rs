@@ -340,6 +340,7 @@ macro_rules! wide_lanes {
 
         impl IntLanes for $i {
             type Mask = $m;
+            bytes_as_vectors!();
             #[inline(always)]
             fn splat(x: i32) -> Self {
                 $i([x; $n])
