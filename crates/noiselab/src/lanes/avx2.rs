@@ -497,10 +497,11 @@ fn unpack_bytes(bytes: __m256i) -> [I8; 4] {
 
 /// `table[i]` for each of 32 bytes `i`. Sixteen byte shuffles, one per
 /// sixteen-entry row of the table, each look up the low nibbles; a tree of
-/// blends then picks the row by bits 4, 5, 6 and 7. About 60 operations
-/// for 32 lookups (packing and unpacking included), against four
-/// instructions and a store-forwarding stall per lane with scalar loads
-/// (Zen 3's gathers measured slower still: 3.6 ns for eight lanes).
+/// blends then picks the row by bits 4, 5, 6 and 7. About 50 operations
+/// for 32 lookups (the rows' loads included; 60 with packing the indices
+/// and unpacking the result), against four instructions and a
+/// store-forwarding stall per lane with scalar loads (Zen 3's gathers
+/// measured slower still: 3.6 ns for eight lanes).
 #[inline(always)]
 fn lookup_packed(table: &Table256, bytes: __m256i) -> __m256i {
     unsafe {
