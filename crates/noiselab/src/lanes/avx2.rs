@@ -534,7 +534,6 @@ fn words_to_top(j: usize) -> __m256i {
         let byte = (8 * j + 2 * i) as i32;
         0x8080 | byte << 16 | (byte + 1) << 24
     }
-    let [a, b] = [[lane(0, 0), lane(0, 1), lane(0, 2), lane(0, 3)], [lane(1, 0), lane(1, 1), lane(1, 2), lane(1, 3)]];
-    let c = if j == 0 { a } else { b };
+    let c = [lane(j, 0), lane(j, 1), lane(j, 2), lane(j, 3)];
     unsafe { _mm256_setr_epi32(c[0], c[1], c[2], c[3], c[0], c[1], c[2], c[3]) }
 }

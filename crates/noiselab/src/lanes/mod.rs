@@ -12,7 +12,7 @@
 //! 32-bit and wrap on overflow in every build profile.
 
 /// [`IntLanes::Bytes`] as the four vectors themselves, each lane's low byte
-/// counting (every level but AVX2): the additions wrap as `i32`, the lookups
+/// counting (every level but AVX2 and AVX-512): the additions wrap as `i32`, the lookups
 /// and [`IntLanes::from_bytes`] mask.
 macro_rules! bytes_as_vectors {
     () => {
@@ -191,7 +191,9 @@ pub trait Lanes:
     /// `lookup16(floats[t], vector k)`. AVX2 looks up the 32 bytes packed
     /// where every table has [`Table16::halves`]: two byte shuffles a table,
     /// where unpacking the bytes and [`Lanes::lookup16`] take two permutes
-    /// and a blend a vector.
+    /// and a blend a vector. AVX-512 spreads each vector's 16 bytes to its
+    /// lanes with one byte permute, not zeroing the rest, which the
+    /// table's permute ignores.
     #[inline(always)]
     fn lookup16_bytes<const T: usize>(bytes: <Self::Int as IntLanes>::Bytes, floats: [&Table16; T]) -> [[Self; T]; 4] {
         lookup16_each(Self::Int::from_bytes(bytes), floats)
@@ -288,15 +290,17 @@ pub trait IntLanes: sealed::Sealed + Copy + Send + Sync + Debug + 'static {
     fn lookup256(table: &Table256, idx: Self) -> Self;
     /// [`IntLanes::lookup256`] of four index vectors at once: on AVX2 their
     /// 32 low bytes go through one set of byte shuffles instead of 32
-    /// scalar loads.
+    /// scalar loads; on AVX-512 their 64 through one pair of permutes
+    /// instead of four.
     #[inline(always)]
     fn lookup256x4(table: &Table256, idx: [Self; 4]) -> [Self; 4] {
         Self::from_bytes(Self::lookup_bytes(table, Self::to_bytes(idx)))
     }
     /// Four vectors' lanes where only each lane's low byte counts: what a
     /// chain of lookups in 256-entry byte tables carries from link to link.
-    /// AVX2 packs the 32 bytes into one register, so such a chain neither
-    /// unpacks nor repacks between its links; other levels keep the vectors.
+    /// AVX2 and AVX-512 pack the 32 or 64 bytes into one register, so such
+    /// a chain neither unpacks nor repacks between its links; other levels
+    /// keep the vectors.
     type Bytes: Copy;
     /// The four vectors' low bytes.
     fn to_bytes(v: [Self; 4]) -> Self::Bytes;
