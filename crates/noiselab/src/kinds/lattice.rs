@@ -881,6 +881,9 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     span: Span<'_, D>,
     out: &mut [f32],
 ) {
+    if fill_one_cell_tile::<K, B, D>(kind, &span, out) {
+        return;
+    }
     let mut tables = KEPT_TABLES.take();
     fill_span_with::<K, B, D>(kind, span, out, &mut tables);
     KEPT_TABLES.keep(tables);
@@ -1923,6 +1926,203 @@ fn tall_cells<K: Lattice<D>, B: BatchLanes, const D: usize>(
     ny >= min_rows * run_count(&cell1[..ny])
 }
 
+/// Most rows [`fill_one_cell_tile`] takes: its rows' positions and fades
+/// live on the stack.
+const ONE_CELL_ROWS: usize = 64;
+
+/// The fill of a whole 2D grid inside one cell of a non-flat kind (a
+/// game's 16² to 64² tile at fine spacing), with no kept tables: what the
+/// general fill does for it, with the cell's records held in registers and
+/// on the stack. A 32² tile spent about three quarters of its time around
+/// its rows in the general fill (perf, AVX-512: splitting and scanning its
+/// axes, building its chunks and runs, hashing and binding through the
+/// tables). [`Accuracy::Fast`], rows of one to [`HELD_BAND_CHUNKS`] whole
+/// chunks and at least [`BAND_ROWS`] of them: [`fill_bands`]' one band,
+/// the same operations on the same operands, so the same bits. Exact, rows
+/// of one, two or four whole chunks: [`write_batch`]'s held rows, batch by
+/// batch. Returns false, having written nothing, where the span is not
+/// such a grid.
+#[inline(always)]
+fn fill_one_cell_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span: &Span<'_, D>, out: &mut [f32]) -> bool {
+    let w = B::WIDTH;
+    if D != 2 || K::FLAT || span.stores != Stores::Cached {
+        return false;
+    }
+    let (xs, ys) = (span.axes.axis(0), span.axes.axis(1));
+    let (nx, ny) = (xs.len(), ys.len());
+    let chunks = nx / w;
+    let fast = span.accuracy == Accuracy::Fast;
+    // The whole grid (as [`fill_bands`] chooses its bands from all of axis 1).
+    let shape = if fast { (1..=HELD_BAND_CHUNKS).contains(&chunks) && ny >= BAND_ROWS } else { matches!(chunks, 1 | 2 | 4) };
+    if !shape || nx != chunks * w || !(1..=ONE_CELL_ROWS).contains(&ny) || span.start != 0 || out.len() != nx * ny {
+        return false;
+    }
+    // Axis 0 by chunk and axis 1 by row, as [`split_axis`] splits them.
+    let mut axis0 = [ChunkAxis::ZERO; HELD_BAND_CHUNKS];
+    let mut cells = [0i32; 16 * HELD_BAND_CHUNKS];
+    for (k, a) in axis0.iter_mut().enumerate().take(chunks) {
+        let (c, f) = kind.split(B::from_slice(&xs[k * w..]));
+        B::store_int(c, &mut cells[k * w..]);
+        f.store(&mut a.x);
+        kind.fade(f).store(&mut a.fade);
+    }
+    let (mut frac1, mut fade1, mut cells1) = ([0f32; ONE_CELL_ROWS], [0f32; ONE_CELL_ROWS], [0i32; ONE_CELL_ROWS]);
+    // (`r + w ≤ ONE_CELL_ROWS`: r < ny ≤ ONE_CELL_ROWS, both multiples of w.)
+    for r in (0..ny).step_by(w) {
+        let mut yr = [0f32; 16];
+        for (j, y) in yr.iter_mut().enumerate().take(w) {
+            *y = ys[(r + j).min(ny - 1)];
+        }
+        let (c, f) = kind.split(B::from_slice(&yr));
+        B::store_int(c, &mut cells1[r..]);
+        f.store(&mut frac1[r..]);
+        kind.fade(f).store(&mut fade1[r..]);
+    }
+    let (cell0, cell1) = (cells[0], cells1[0]);
+    let one_cell = cells[..nx].iter().fold(true, |all, &c| all & (c == cell0)) & cells1[..ny].iter().fold(true, |all, &c| all & (c == cell1));
+    if !one_cell {
+        return false;
+    }
+    // The cell's lattice points as [`PointRows::plane`] hashes them: row r
+    // along axis 0 from the cell's lower point, its lanes 0 and 1 the
+    // cell's corners 2r and 2r + 1.
+    let mut hashed = [Corner::<B>::zero(); 2];
+    for (r, h) in hashed.iter_mut().enumerate() {
+        let mut row = [0i32; D];
+        row[1] = cell1.wrapping_add(r as i32);
+        *h = fields_of(kind.point_row::<B>(cell0, row), K::HASHED);
+    }
+    let axis0 = &axis0[..chunks];
+    if fast {
+        one_cell_band::<K, B, D>(kind, &hashed, axis0, (&frac1[..ny], &fade1[..ny]), out);
+    } else {
+        one_cell_rows::<K, B, D>(kind, &hashed, axis0, (&frac1, &fade1, ny), out);
+    }
+    true
+}
+
+/// [`fill_one_cell_tile`]'s band ([`Accuracy::Fast`]): the cell's corners
+/// bound at v = 0 and v = 1 as [`bind_plane`] binds them, its half-blend
+/// polynomials and each chunk's band coefficients, all in registers.
+#[inline(always)]
+fn one_cell_band<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, hashed: &[Corner<B>; 2], axis0: &[ChunkAxis], rows: (&[f32], &[f32]), out: &mut [f32]) {
+    // (Written out: `array::map` was left out of line, outside the batch
+    // driver's instruction-set clone.)
+    let empty = Held::<B> { corners: [Corner::zero(); MAX_CORNERS], fields: K::BOUND };
+    let mut held = [Held { ..empty }, empty];
+    for (r, &point) in hashed.iter().enumerate() {
+        for (v, bound) in held.iter_mut().enumerate() {
+            let mut fs = [B::cst(0.0); D];
+            fs[1] = B::cst(v as f64);
+            let record = fields_of(kind.bind(point, offsets(fs, 2 * r)), K::BOUND);
+            for next in 0..2 {
+                bound.corners[2 * r + next] = lane_of(record, next);
+            }
+        }
+    }
+    let weights = half_blend_weights::<K, B, D>(kind, [0.0; D]);
+    let mut halves = [B::cst(0.0); 16];
+    for (h, to) in halves.chunks_exact_mut(4).enumerate() {
+        to.copy_from_slice(&polynomial(kind, &held[h & 1], &weights[h], (h >> 1, 2)));
+    }
+    let mut band = [[B::cst(0.0); 4]; HELD_BAND_CHUNKS];
+    for (c, axis) in band.iter_mut().zip(axis0) {
+        *c = band_coefficients(half_blends::<K, B, D>(axis.lanes(), &halves));
+    }
+    match axis0.len() {
+        1 => write_band_rows::<B, 1>(out, rows, &[band[0]]),
+        2 => write_band_rows::<B, 2>(out, rows, &[band[0], band[1]]),
+        3 => write_band_rows::<B, 3>(out, rows, &[band[0], band[1], band[2]]),
+        _ => write_band_rows::<B, 4>(out, rows, &band),
+    }
+}
+
+/// Most fields of a lattice point's records bound for a batch of a 2D
+/// grid's rows: two rows of records of up to six fields.
+const ONE_CELL_POINT_FIELDS: usize = 2 * 6;
+
+/// [`fill_one_cell_tile`]'s exact rows: batches of up to WIDTH rows, each
+/// with the cell's two points bound for its rows as [`write_batch`] binds
+/// them (in a table on the stack), then written by [`write_held_rows`].
+#[inline(always)]
+fn one_cell_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    hashed: &[Corner<B>; 2],
+    axis0: &[ChunkAxis],
+    (frac1, fade1, ny): (&[f32; ONE_CELL_ROWS], &[f32; ONE_CELL_ROWS], usize),
+    out: &mut [f32],
+) {
+    let (w, nx) = (B::WIDTH, axis0.len() * B::WIDTH);
+    let per_point = PointRows::<D>::PER_PLANE * K::BOUND.total();
+    debug_assert!(per_point <= ONE_CELL_POINT_FIELDS);
+    let mut chunks = [Chunk { start: 0, end: nx, cell: 0 }; 4];
+    for (k, ch) in chunks.iter_mut().enumerate() {
+        ch.start = k * w;
+    }
+    let mut table = [0f32; 2 * ONE_CELL_POINT_FIELDS * 16];
+    let (weights, mut fs) = row_lanes::<K, B, D>(kind, [0.0; D]);
+    for y in (0..ny).step_by(w) {
+        // (`y + w ≤ ONE_CELL_ROWS`, as in [`fill_one_cell_tile`].)
+        fs[1] = B::from_slice(&frac1[y..]);
+        for (v, slots) in table.chunks_exact_mut(per_point * 16).take(2).enumerate() {
+            for (r, &point) in hashed.iter().enumerate() {
+                let b = kind.bind::<B>(lane_of(point, v), offsets(fs, 2 * r));
+                for m in 0..K::BOUND.floats {
+                    b.f[m].store(&mut slots[(r * K::BOUND.total() + m) * 16..]);
+                }
+                for m in 0..K::BOUND.ints {
+                    B::from_bits(b.i[m]).store(&mut slots[(r * K::BOUND.total() + K::BOUND.floats + m) * 16..]);
+                }
+            }
+        }
+        let rows = (ny - y).min(w);
+        let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f: [0.0; D] };
+        let records = BatchRecords { table: &table, per_point, row: 0 };
+        let to = &mut out[y * nx..(y + rows) * nx];
+        let rest = (weights, false);
+        match axis0.len() {
+            1 => write_held_rows::<K, B, D, 1, true>(kind, &batch, (axis0, &chunks[..1]), &records, rest, to),
+            2 => write_held_rows::<K, B, D, 2, true>(kind, &batch, (axis0, &chunks[..2]), &records, rest, to),
+            _ => write_held_rows::<K, B, D, 4, true>(kind, &batch, (axis0, &chunks[..4]), &records, rest, to),
+        }
+    }
+}
+
+/// A record's first `fields` fields, the rest zero: what the grid fill's
+/// tables hold of it ([`store_record`], read back by [`Source::record`]).
+#[inline(always)]
+fn fields_of<B: BatchLanes>(r: Corner<B>, fields: Fields) -> Corner<B> {
+    let mut kept = Corner::zero();
+    kept.f[..fields.floats].copy_from_slice(&r.f[..fields.floats]);
+    kept.i[..fields.ints].copy_from_slice(&r.i[..fields.ints]);
+    kept
+}
+
+/// Lane `j` of a record, in every lane. (Permutes in loops: `map` over
+/// the fields, and `lane`, were left out of line, calls outside the batch
+/// driver's instruction-set clone.)
+#[inline(always)]
+fn lane_of<B: BatchLanes>(r: Corner<B>, j: usize) -> Corner<B> {
+    let at = B::Int::splat(j as i32);
+    let mut spread = r;
+    for v in spread.f.iter_mut() {
+        *v = B::permute(*v, at);
+    }
+    for v in spread.i.iter_mut() {
+        *v = B::permute(B::from_bits(*v), at).to_bits();
+    }
+    spread
+}
+
+/// Fields held in registers, one each (the single-cell sources of
+/// [`fill_one_cell_tile`]: every lane at the same entry).
+impl<B: BatchLanes> Source<B> for [B; 16] {
+    #[inline(always)]
+    fn field(&self, k: usize, _next: usize) -> B {
+        self[k]
+    }
+}
+
 /// [`Accuracy::Fast`]'s fill of whole rows where cells hold several rows
 /// along axis 1. A band is the rows of one cell along axis 1 at one
 /// position on axes 2..; inside it every column's value is `P(v) +
@@ -1990,22 +2190,7 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
             fs[1] = B::cst(v as f64);
             bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, table, points);
         }
-        // Half-blend h (bit 0: at v = 1; bit 1: the upper corners on axis
-        // 1) weighs pair k (bit 0: upper on axis 1; bit d − 1: on axis d)
-        // by the band's fades on axes 2.. where its side on axis 1 is h's.
-        let mut pair_weights = [[B::cst(0.0); MAX_CORNERS / 2]; 4];
-        for (h, weights) in pair_weights.iter_mut().enumerate() {
-            for (k, pw) in weights.iter_mut().enumerate().take(rows) {
-                if k & 1 != h >> 1 {
-                    continue;
-                }
-                *pw = B::cst(1.0);
-                for d in 2..D {
-                    let s = B::splat(kind.fade(f[d]));
-                    *pw = *pw * if corner_bit(k, d - 1) == 1 { s } else { B::cst(1.0) - s };
-                }
-            }
-        }
+        let pair_weights = half_blend_weights::<K, B, D>(kind, f);
         let views = [bound[0].entries(rows * K::BOUND.total(), 0, room), bound[1].entries(rows * K::BOUND.total(), 0, room)];
         // Checked once for every cell (each store through `Columns::store`
         // checked its own bounds: 18 instructions a store).
@@ -2028,13 +2213,11 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         for ((ch, axis), to) in chunks.iter().zip(chunk_axis).zip(coef.chunks_exact_mut(4 * w)) {
             let half = if narrow {
                 let lane = B::load_int(&axis.lane);
-                half_blends::<K, B, D>(axis, &PerLane::<B, true> { entries: &narrow_view, first: axis.first, lane: [lane, lane] })
+                half_blends::<K, B, D>(axis.lanes(), &PerLane::<B, true> { entries: &narrow_view, first: axis.first, lane: [lane, lane] })
             } else {
-                half_blends::<K, B, D>(axis, &OneCell::new(&halves, ch.cell, 16))
+                half_blends::<K, B, D>(axis.lanes(), &OneCell::new(&halves, ch.cell, 16))
             };
-            let p1 = half[1] - half[0];
-            let band_coef = [half[0], p1, half[2] - half[0], (half[3] - half[2]) - p1];
-            for (m, v) in band_coef.into_iter().enumerate() {
+            for (m, v) in band_coefficients(half).into_iter().enumerate() {
                 v.store(&mut to[m * w..]);
             }
         }
@@ -2200,7 +2383,7 @@ const HELD_BAND_CHUNKS: usize = 4;
 /// took 5 097 instructions instead of 4 693 on AVX2, callgrind, and 0.341
 /// instead of 0.300 ns/sample on AVX-512, medians of five probe runs.)
 #[inline(always)]
-fn write_held_band<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, fade): (&[f32], &[f32]), coef: &[f32]) {
+fn write_held_band<B: BatchLanes, const N: usize>(band_out: &mut [f32], rows: (&[f32], &[f32]), coef: &[f32]) {
     let w = B::WIDTH;
     let mut held = [[B::cst(0.0); 4]; N];
     for (k, c) in held.iter_mut().enumerate() {
@@ -2208,6 +2391,14 @@ fn write_held_band<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, f
             *v = B::from_slice(&coef[(4 * k + m) * w..]);
         }
     }
+    write_band_rows::<B, N>(band_out, rows, &held);
+}
+
+/// A band's rows of `N` whole chunks from their coefficients in registers
+/// (`held[k]`: chunk k's `p₀, p₁, q₀, q₁`).
+#[inline(always)]
+fn write_band_rows<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, fade): (&[f32], &[f32]), held: &[[B; 4]; N]) {
+    let w = B::WIDTH;
     // Indices, not zipped iterators (see `write_aligned_band`).
     let rows = frac.len().min(fade.len()).min(band_out.len() / (N * w));
     for r in 0..rows {
@@ -2219,11 +2410,42 @@ fn write_held_band<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, f
     }
 }
 
-/// A chunk's four half-blends ([`fill_bands`]) at its positions along axis
-/// 0, from its cells' coefficients (16 fields: four per half-blend).
+/// Each half-blend's weights on the pairs of corners along axis 0, for a
+/// band at positions `f` on axes 2.. ([`fill_bands`]): half-blend h (bit 0:
+/// at v = 1; bit 1: the upper corners on axis 1) weighs pair k (bit 0:
+/// upper on axis 1; bit d − 1: on axis d) by the band's fades on axes 2..
+/// where its side on axis 1 is h's, and the other pairs by 0.
 #[inline(always)]
-fn half_blends<K: Lattice<D>, B: BatchLanes, const D: usize>(axis: &ChunkAxis, cells: &impl Source<B>) -> [B; 4] {
-    let (x, fade) = axis.lanes::<B>();
+fn half_blend_weights<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, f: [f32; D]) -> [[B; MAX_CORNERS / 2]; 4] {
+    let mut pair_weights = [[B::cst(0.0); MAX_CORNERS / 2]; 4];
+    for (h, weights) in pair_weights.iter_mut().enumerate() {
+        for (k, pw) in weights.iter_mut().enumerate().take(PointRows::<D>::PER_PLANE) {
+            if k & 1 != h >> 1 {
+                continue;
+            }
+            *pw = B::cst(1.0);
+            for d in 2..D {
+                let s = B::splat(kind.fade(f[d]));
+                *pw = *pw * if corner_bit(k, d - 1) == 1 { s } else { B::cst(1.0) - s };
+            }
+        }
+    }
+    pair_weights
+}
+
+/// A band's coefficients `p₀, p₁, q₀, q₁` ([`band_point`]) from a chunk's
+/// four half-blends ([`half_blends`]).
+#[inline(always)]
+fn band_coefficients<B: BatchLanes>(half: [B; 4]) -> [B; 4] {
+    let p1 = half[1] - half[0];
+    [half[0], p1, half[2] - half[0], (half[3] - half[2]) - p1]
+}
+
+/// A chunk's four half-blends ([`fill_bands`]) at its positions `x` along
+/// axis 0 (fades `fade`), from its cells' coefficients (16 fields: four
+/// per half-blend).
+#[inline(always)]
+fn half_blends<K: Lattice<D>, B: BatchLanes, const D: usize>((x, fade): (B, B), cells: &impl Source<B>) -> [B; 4] {
     let mut half = [B::cst(0.0); 4];
     for (h, v) in half.iter_mut().enumerate() {
         *v = poly_at::<K, B, D>(x, fade, &Shifted { source: cells, base: 4 * h });

@@ -278,6 +278,13 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         // lines of axes 1.. (axis 2 from 0).
         Grid::new(axes([2.0, -0.5, 0.0]), [1.0 / 32.0; D], axes([32, 40, 2])),
         Grid::new(axes([-3.5, 1.25, 0.0]), [1.0 / 32.0; D], axes([16, 20, 2])),
+        // Inside one cell on axes 0 and 1 as well: a 2D grid of one, two
+        // or four whole chunks a row takes a fill of its own, the cell's
+        // records in registers and on the stack (64 columns: eight chunks
+        // of 8 lanes, so the general fill on AVX2).
+        Grid::new(axes([2.0, 0.25, 0.0]), [1.0 / 64.0; D], axes([32, 40, 2])),
+        Grid::new(axes([-3.5, 1.25, 0.5]), [1.0 / 64.0; D], axes([16, 20, 2])),
+        Grid::new(axes([7.0, -2.0, 0.0]), [1.0 / 128.0; D], axes([64, 3, 2])),
         // And across two cells: a chunk each (16 lanes) or two (8).
         Grid::new(axes([1.0, -0.25, 0.5]), [1.0 / 16.0; D], axes([32, 24, 2])),
         // Tiles of cells narrower than the lanes whose lattice points fit

@@ -35,6 +35,9 @@ fn grids<const D: usize>() -> Vec<Grid<D>> {
         Grid::new([2.0; D], [1.0 / 32.0; D], size(32, rest)),
         Grid::new([1.0; D], [1.0 / 16.0; D], size(32, rest)),
         Grid::new([-1.0; D], [0.25; D], size(16, rest)),
+        // A 2D grid inside one cell (40 rows at 1/64), which takes the
+        // one-cell tile's fill on AVX2 and AVX-512 (four and two chunks).
+        Grid::new([2.0; D], [1.0 / 64.0; D], size(32, rest)),
     ];
     if D == 2 {
         // Rows wider than a band's block of columns (512), ending in an
@@ -167,6 +170,59 @@ fn check_spans<N: Noise<D>, const D: usize>(noise: &N, grid: Grid<D>) {
                 for (k, (&e, &o)) in expected.iter().zip(&out).enumerate() {
                     assert_eq!(e.to_bits(), o.to_bits(), "{D}D {level:?} {stores:?}, rows {first}+{count}, point {}: {e:e} vs {o:e}", first * nx + k);
                 }
+            }
+        }
+    }
+}
+
+/// Fast fills of 2D grids inside one cell (tiles: one to four whole chunks
+/// a row, 4 to 64 rows), which form their one band in registers, give the
+/// bits of the same points in the fast fill of a grid around them over
+/// several cells, which takes the general bands, at every level. Some
+/// grids here are not one-cell tiles at some level (too many chunks, a
+/// row across a cell) and check the fallback.
+#[test]
+fn fast_tiles_inside_one_cell_equal_a_larger_grid() {
+    let tiles = [
+        // The benchmark's 32² tiles at 1/32.
+        ([2.0, 5.0], [1.0 / 32.0, 1.0 / 32.0], [32, 32]),
+        ([-3.0, -1.0], [1.0 / 64.0, 1.0 / 64.0], [64, 64]),
+        // Rows not a multiple of the lanes; positions off the lattice lines.
+        ([0.25, 7.5], [1.0 / 128.0, 1.0 / 64.0], [16, 20]),
+        // The fewest rows that take bands.
+        ([11.0, -6.0], [1.0 / 64.0, 1.0 / 16.0], [48, 4]),
+        // Descending along axis 0, in cell −1.
+        ([-0.5, 3.0], [-1.0 / 128.0, 1.0 / 64.0], [32, 40]),
+        ([10000.0, 2.0], [1.0 / 64.0, 1.0 / 64.0], [32, 33]),
+        // Across a cell along axis 0, and along axis 1.
+        ([0.75, 0.0], [1.0 / 32.0, 1.0 / 32.0], [32, 32]),
+        ([1.0, 0.5], [1.0 / 64.0, 1.0 / 32.0], [32, 32]),
+    ];
+    for (origin, step, size) in tiles {
+        check_tile(&Improved::new(4), origin, step, size);
+        check_tile(&Improved::new(1).with_variant(ImprovedVariant::Original2002), origin, step, size);
+        check_tile(&Improved::new(2).with_period([5, 3, 0, 0]).unwrap(), origin, step, size);
+        check_tile(&Classic::new(2), origin, step, size);
+        check_tile(&Modified::new(3), origin, step, size);
+        check_tile(&Value::new(6), origin, step, size);
+    }
+}
+
+#[inline(never)]
+fn check_tile<N: Noise<2>>(noise: &N, origin: [f64; 2], step: [f64; 2], size: [usize; 2]) {
+    // The tile at (32, 32) in a grid of 32 more points on every side
+    // (dyadic steps: its coordinates are the tile's exactly).
+    const MARGIN: usize = 32;
+    let around = Grid::new(core::array::from_fn(|d| origin[d] - MARGIN as f64 * step[d]), step, [size[0] + 2 * MARGIN, size[1] + 2 * MARGIN]);
+    let tile = Grid::new(origin, step, size);
+    for level in SimdLevel::available() {
+        let larger = fill(level, noise, &around, Accuracy::Fast);
+        let mut out = vec![f32::NAN; tile.len()];
+        fill_grid_at(level, noise, &tile, &mut out, Accuracy::Fast).unwrap();
+        for (j, row) in out.chunks_exact(size[0]).enumerate() {
+            let from = (j + MARGIN) * around.size[0] + MARGIN;
+            for (i, (&t, &e)) in row.iter().zip(&larger[from..from + size[0]]).enumerate() {
+                assert_eq!(t.to_bits(), e.to_bits(), "{level:?}, tile at {origin:?} step {step:?} size {size:?}, point ({i}, {j}): {t:e} vs {e:e}");
             }
         }
     }
