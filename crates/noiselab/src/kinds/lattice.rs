@@ -1958,7 +1958,8 @@ fn fill_one_cell_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, sp
         return false;
     }
     // Most grids that are not inside one cell leave here, before any split
-    // (a fractal tile's octaves: 65 instructions an octave, callgrind, AVX2).
+    // (split first, each of a 32² fBm-6 tile's five octaves across cells
+    // paid about 390 instructions more: callgrind, AVX2).
     if !same_cell_at_ends(kind, xs) || !same_cell_at_ends(kind, ys) {
         return false;
     }
