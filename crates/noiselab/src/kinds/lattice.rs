@@ -609,21 +609,6 @@ fn split_axis<K: Lattice<D>, B: BatchLanes, const D: usize>(
     cell.resize(padded, 0);
     frac.resize(padded, 0.0);
     fade.resize(padded, 0.0);
-    let w = B::WIDTH;
-    let mut k = split_into::<K, B, D>(kind, coords, (cell, frac, fade));
-    while k < padded {
-        B::store_int(B::Int::splat(0), &mut cell[k..]);
-        B::cst(0.0).store(&mut frac[k..]);
-        B::cst(0.0).store(&mut fade[k..]);
-        k += w;
-    }
-}
-
-/// [`split_axis`] into slices of at least the coordinates rounded up to
-/// whole lanes (entries past the coordinates repeat the last one's):
-/// returns how many entries it wrote.
-#[inline(always)]
-fn split_into<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, coords: &[f32], (cell, frac, fade): (&mut [i32], &mut [f32], &mut [f32])) -> usize {
     let (n, w) = (coords.len(), B::WIDTH);
     let mut k = 0;
     while k < n {
@@ -642,7 +627,12 @@ fn split_into<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, coords: &[
         kind.fade(f).store(&mut fade[k..]);
         k += w;
     }
-    k
+    while k < padded {
+        B::store_int(B::Int::splat(0), &mut cell[k..]);
+        B::cst(0.0).store(&mut frac[k..]);
+        B::cst(0.0).store(&mut fade[k..]);
+        k += w;
+    }
 }
 
 /// An axis's cells, positions and fades by index ([`split_axis`]).
@@ -785,7 +775,6 @@ impl ChunkCells {
     }
 }
 
-#[inline(always)]
 fn chunk_cells(cells: &[i32]) -> ChunkCells {
     let (first, last) = cell_span(cells);
     // Branch-free, so it vectorises.
@@ -1051,13 +1040,7 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     // Each aligned chunk of columns' cells, for the per-lane path.
     span_of.clear();
     if !long_runs {
-        // A loop, not `extend` over a `map`: that was left out of line,
-        // outside the instruction-set clone (2 % of a 32² tile of fBm-6 on
-        // AVX-512, perf).
-        span_of.reserve(cols.div_ceil(w));
-        for cells in cell0[..cols].chunks(w) {
-            span_of.push(chunk_cells(cells));
-        }
+        span_of.extend(cell0[..cols].chunks(w).map(chunk_cells));
     }
     // Whole rows whose chunks all reach their cells one way (a regular
     // grid finer than its lanes: one cell per column, or a few) run a loop
@@ -1520,7 +1503,13 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let point = OneCell::new(hashed, v, hashed_fields);
         let slots = &mut table[v * per_point * 16..(v + 1) * per_point * 16];
         for (r, &slot) in slot_of.iter().enumerate().take(PointRows::<D>::PER_PLANE) {
-            store_bound(kind, point.record(slot * K::HASHED.total(), 0, K::HASHED), offsets_of[r], (slots, r * K::BOUND.total()));
+            let b = kind.bind::<B>(point.record(slot * K::HASHED.total(), 0, K::HASHED), offsets_of[r]);
+            for m in 0..K::BOUND.floats {
+                b.f[m].store(&mut slots[(r * K::BOUND.total() + m) * 16..]);
+            }
+            for m in 0..K::BOUND.ints {
+                B::from_bits(b.i[m]).store(&mut slots[(r * K::BOUND.total() + K::BOUND.floats + m) * 16..]);
+            }
         }
     }
     let table = bound.field(0, 0);
@@ -1564,20 +1553,6 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         let records = BatchRecords { table, per_point, row: j };
         let out = (&mut out[j * nx..(j + 1) * nx], false);
         row.write_runs(kind, (chunks, chunk_axis, formed), &records, out);
-    }
-}
-
-/// A lattice point's record bound at `offset` (a row of a batch: one row
-/// a lane), stored field by field a register apart from field `at` of
-/// `slots`: a batch table's layout, which [`BatchRecords`] reads.
-#[inline(always)]
-fn store_bound<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, point: Corner<B>, offset: [B; D], (slots, at): (&mut [f32], usize)) {
-    let b = kind.bind::<B>(point, offset);
-    for m in 0..K::BOUND.floats {
-        b.f[m].store(&mut slots[(at + m) * 16..]);
-    }
-    for m in 0..K::BOUND.ints {
-        B::from_bits(b.i[m]).store(&mut slots[(at + K::BOUND.floats + m) * 16..]);
     }
 }
 
@@ -1988,18 +1963,27 @@ fn fill_one_cell_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, sp
     if !same_cell_at_ends(kind, xs) || !same_cell_at_ends(kind, ys) {
         return false;
     }
-    // Both axes split on the stack by [`split_axis`]'s loop: axis 0 chunk
-    // by chunk, as the general fill holds it (split whole and copied into
-    // the chunks, a tile took about 380 more instructions: callgrind,
-    // AVX2); axis 1 whole (`ny` rounded up to whole lanes stays within
-    // ONE_CELL_ROWS, a multiple of every width).
+    // Axis 0 by chunk and axis 1 by row, as [`split_axis`] splits them.
     let mut axis0 = [ChunkAxis::ZERO; HELD_BAND_CHUNKS];
     let mut cells = [0i32; 16 * HELD_BAND_CHUNKS];
     for (k, a) in axis0.iter_mut().enumerate().take(chunks) {
-        split_into::<K, B, D>(kind, &xs[k * w..(k + 1) * w], (&mut cells[k * w..], &mut a.x, &mut a.fade));
+        let (c, f) = kind.split(B::from_slice(&xs[k * w..]));
+        B::store_int(c, &mut cells[k * w..]);
+        f.store(&mut a.x);
+        kind.fade(f).store(&mut a.fade);
     }
     let (mut frac1, mut fade1, mut cells1) = ([0f32; ONE_CELL_ROWS], [0f32; ONE_CELL_ROWS], [0i32; ONE_CELL_ROWS]);
-    split_into::<K, B, D>(kind, ys, (&mut cells1, &mut frac1, &mut fade1));
+    // (`r + w ≤ ONE_CELL_ROWS`: r < ny ≤ ONE_CELL_ROWS, both multiples of w.)
+    for r in (0..ny).step_by(w) {
+        let mut yr = [0f32; 16];
+        for (j, y) in yr.iter_mut().enumerate().take(w) {
+            *y = ys[(r + j).min(ny - 1)];
+        }
+        let (c, f) = kind.split(B::from_slice(&yr));
+        B::store_int(c, &mut cells1[r..]);
+        f.store(&mut frac1[r..]);
+        kind.fade(f).store(&mut fade1[r..]);
+    }
     let (cell0, cell1) = (cells[0], cells1[0]);
     let one_cell = cells[..nx].iter().fold(true, |all, &c| all & (c == cell0)) & cells1[..ny].iter().fold(true, |all, &c| all & (c == cell1));
     if !one_cell {
@@ -2099,7 +2083,13 @@ fn one_cell_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
         fs[1] = B::from_slice(&frac1[y..]);
         for (v, slots) in table.chunks_exact_mut(per_point * 16).take(2).enumerate() {
             for (r, &point) in hashed.iter().enumerate() {
-                store_bound(kind, lane_of(point, v), offsets(fs, 2 * r), (slots, r * K::BOUND.total()));
+                let b = kind.bind::<B>(lane_of(point, v), offsets(fs, 2 * r));
+                for m in 0..K::BOUND.floats {
+                    b.f[m].store(&mut slots[(r * K::BOUND.total() + m) * 16..]);
+                }
+                for m in 0..K::BOUND.ints {
+                    B::from_bits(b.i[m]).store(&mut slots[(r * K::BOUND.total() + K::BOUND.floats + m) * 16..]);
+                }
             }
         }
         let rows = (ny - y).min(w);
