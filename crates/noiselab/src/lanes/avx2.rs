@@ -210,8 +210,10 @@ impl Lanes for X8 {
         if off == 0 {
             return I8(t);
         }
-        let mut out = I8(t).to_array();
-        super::wrap_far_lanes(&self.to_array(), &mut out);
+        let (x, mut out) = (self.to_array(), I8(t).to_array());
+        for k in 0..8 {
+            out[k] = x[k] as i64 as i32;
+        }
         I8::from_array(out)
     }
     #[inline(always)]

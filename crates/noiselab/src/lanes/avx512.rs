@@ -209,8 +209,10 @@ impl Lanes for X16 {
         if off == 0 {
             return I16(t);
         }
-        let mut out = I16(t).to_array();
-        super::wrap_far_lanes(&self.to_array(), &mut out);
+        let (x, mut out) = (self.to_array(), I16(t).to_array());
+        for k in 0..16 {
+            out[k] = x[k] as i64 as i32;
+        }
         I16::from_array(out)
     }
     #[inline(always)]

@@ -394,23 +394,6 @@ impl Table16 {
     }
 }
 
-/// [`Lanes::to_int_wrapping`]'s lanes that a vector conversion did not
-/// take (it gave `i32::MIN`: |x| ≥ 2³¹ or NaN), as `as i64 as i32`: `as i64`
-/// saturates (NaN → 0), the second cast wraps. Out of line and cold, so
-/// each inlined conversion is a compare and a branch: unrolled in place,
-/// the sixteen scalar conversions were about 11 KB of the AVX-512 2D
-/// improved grid fill's 135 KB of machine code (127 KB with them here).
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-#[cold]
-#[inline(never)]
-pub(crate) fn wrap_far_lanes<const N: usize>(x: &[f32; N], converted: &mut [i32; N]) {
-    for (c, &x) in converted.iter_mut().zip(x) {
-        if *c == i32::MIN {
-            *c = x as i64 as i32;
-        }
-    }
-}
-
 /// `[k][t] = L::lookup16(floats[t], bytes[k])`: [`Lanes::lookup16_bytes`]
 /// on unpacked bytes.
 #[inline(always)]
