@@ -202,7 +202,8 @@ pub(crate) trait Lattice<const D: usize>: Send + Sync {
     }
 
     /// The corner's value at `offset`, up to the sign of a zero result:
-    /// point evaluation's corners other than corner 0 (see
+    /// point evaluation's corners, corner 0 included except where the
+    /// point's value is a zero (see [`sample`] and
     /// [`Lattice::eval_unsigned_zero`]). Kinds may form it without binding.
     #[inline(always)]
     fn value_unsigned_zero<L: Lanes>(&self, corner: Corner<L>, offset: [L; D]) -> L {
@@ -313,16 +314,24 @@ pub(crate) fn sample<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K, p: [L; D
     let (cell, f) = split_point(kind, p);
     let corners = kind.corners(cell);
     let mut v = [L::cst(0.0); MAX_CORNERS];
-    for c in 0..(1 << D) {
-        let off = offsets(f, c);
-        // Only corner 0's zero can reach the result (`eval_unsigned_zero`).
-        v[c] = if c == 0 {
-            kind.eval(&kind.bind(corners[c], off), off[0])
-        } else {
-            kind.value_unsigned_zero(corners[c], off)
-        };
+    for (c, value) in v.iter_mut().enumerate().take(1 << D) {
+        *value = kind.value_unsigned_zero(corners[c], offsets(f, c));
     }
-    finish(kind, interpolate(v, fades(kind, f)))
+    let weights = fades(kind, f);
+    let value = interpolate(v, weights);
+    // The corners' zeros may have the wrong sign (`value_unsigned_zero`).
+    // A sign of zero can change the result of `+`, `−` and `×` only where
+    // that result is a zero, so it reaches a lerp chain's end only where
+    // the end is a zero: there corner 0 is evaluated with its sign (the
+    // only corner whose sign shows, `Lattice::eval_unsigned_zero`) and the
+    // chain run again; also where it is NaN, whose bits stay as they were.
+    let zero = L::cst(0.0);
+    if L::any(!(value.lt(zero) | value.gt(zero))) {
+        let off = offsets(f, 0);
+        v[0] = kind.eval(&kind.bind(corners[0], off), off[0]);
+        return finish(kind, interpolate(v, weights));
+    }
+    finish(kind, value)
 }
 
 /// Value and analytic gradient; the value is [`sample`]'s bit for bit.
