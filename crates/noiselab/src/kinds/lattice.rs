@@ -1718,22 +1718,42 @@ fn fill_held_fine_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: 
                 *h = At { entries: &view, at: j * w }.record(slot * K::HASHED.total(), 0, K::HASHED);
             }
         }
-        // Axes 2.. for the whole run; axis 1 row by row.
-        let (mut weights, mut fs) = row_lanes::<K, B, D>(kind, f);
-        let off_rest = off_line(f);
-        for y in y0..y1 {
-            fs[1] = B::splat(frac1[y]);
-            weights[1] = B::splat(fade1[y]);
-            let mut bound = HeldPoints::<B, TWO> { rows: [[Corner::zero(); 2]; MAX_CORNERS / 2], fields: K::BOUND };
-            for (row, (held, b)) in hashed.iter().zip(&mut bound.rows).enumerate().take(rows) {
-                let offsets = offsets(fs, 2 * row);
-                for (h, b) in held.iter().zip(b).take(if TWO { 2 } else { 1 }) {
-                    *b = kind.bind(*h, offsets);
-                }
+        let out = &mut out[row * nx..(row + y1 - y0) * nx];
+        write_held_run::<K, B, D, TWO>(kind, &hashed, chunk_axis, (&frac1[y0..y1], &fade1[y0..y1], f), out);
+    }
+}
+
+/// The rows of a run along axis 1 (`out`: whole rows, one for each of
+/// `frac1` and `fade1`; `f`: the run's positions on axes 2..) from its
+/// plane's hashed point rows held in registers (`hashed[r]`: plane row r's
+/// first register, and its second where `TWO`): each row binds them there
+/// and every chunk permutes its lanes' corners out of them. The rows of
+/// [`fill_held_fine_rows`] and [`fill_small_tile`].
+#[inline(always)]
+fn write_held_run<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(
+    kind: &K,
+    hashed: &[[Corner<B>; 2]; MAX_CORNERS / 2],
+    chunk_axis: &[ChunkAxis],
+    (frac1, fade1, f): (&[f32], &[f32], [f32; D]),
+    out: &mut [f32],
+) {
+    let Some(nx) = out.len().checked_div(frac1.len()) else {
+        return;
+    };
+    // Axes 2.. for the whole run; axis 1 row by row.
+    let (mut weights, mut fs) = row_lanes::<K, B, D>(kind, f);
+    let off_rest = off_line(f);
+    for ((&frac, &fade), out) in frac1.iter().zip(fade1).zip(out.chunks_exact_mut(nx)) {
+        fs[1] = B::splat(frac);
+        weights[1] = B::splat(fade);
+        let mut bound = HeldPoints::<B, TWO> { rows: [[Corner::zero(); 2]; MAX_CORNERS / 2], fields: K::BOUND };
+        for (row, (held, b)) in hashed.iter().zip(&mut bound.rows).enumerate().take(PointRows::<D>::PER_PLANE) {
+            let offsets = offsets(fs, 2 * row);
+            for (h, b) in held.iter().zip(b).take(if TWO { 2 } else { 1 }) {
+                *b = kind.bind(*h, offsets);
             }
-            let at = (row + (y - y0)) * nx;
-            FineRow { points: bound, chunk_axis, weights }.write::<K>(kind, off_rest || frac1[y] != 0.0, &mut out[at..at + nx]);
         }
+        FineRow { points: bound, chunk_axis, weights }.write::<K>(kind, off_rest || frac != 0.0, out);
     }
 }
 
