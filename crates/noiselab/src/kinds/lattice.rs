@@ -890,7 +890,7 @@ pub(crate) fn fill_span<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D:
     span: Span<'_, D>,
     out: &mut [f32],
 ) {
-    if fill_one_cell_tile::<K, B, D>(kind, &span, out) {
+    if fill_small_tile::<K, B, D>(kind, &span, out) {
         return;
     }
     let mut tables = KEPT_TABLES.take();
@@ -1955,24 +1955,35 @@ fn tall_cells<K: Lattice<D>, B: BatchLanes, const D: usize>(
     ny >= min_rows * run_count(&cell1[..ny])
 }
 
-/// Most rows [`fill_one_cell_tile`] takes: its rows' positions and fades
+/// Most rows [`fill_small_tile`] takes: its rows' positions and fades
 /// live on the stack.
 const ONE_CELL_ROWS: usize = 64;
 
-/// The fill of a whole 2D grid inside one cell of a non-flat kind (a
-/// game's 16² to 64² tile at fine spacing), with no kept tables: what the
-/// general fill does for it, with the cell's records held in registers and
-/// on the stack. A 32² tile spent about three quarters of its time around
-/// its rows in the general fill (perf, AVX-512: splitting and scanning its
-/// axes, building its chunks and runs, hashing and binding through the
-/// tables). [`Accuracy::Fast`], rows of one to [`HELD_BAND_CHUNKS`] whole
-/// chunks and at least [`BAND_ROWS`] of them: [`fill_bands`]' one band,
-/// the same operations on the same operands, so the same bits. Exact, rows
-/// of one, two or four whole chunks: [`write_batch`]'s held rows, batch by
-/// batch. Returns false, having written nothing, where the span is not
-/// such a grid.
+/// The fill of a small whole 2D grid of a non-flat kind (a game's 16² to
+/// 64² tile), with no kept tables: what the general fill does for it, with
+/// the lattice points held in registers and the axes on the stack. A 32²
+/// tile spent about three quarters of its time around its rows in the
+/// general fill (perf, AVX-512: splitting and scanning its axes, building
+/// its chunks and runs, hashing and binding through the tables), and the
+/// octaves of a fractal tile walked four of its paths, more machine code
+/// than the instruction cache holds (performance-history, stop 73).
+///
+/// Rows of one to [`HELD_BAND_CHUNKS`] whole chunks, up to
+/// [`ONE_CELL_ROWS`] of them. Inside one cell: [`Accuracy::Fast`], at
+/// least [`BAND_ROWS`] rows, [`fill_bands`]' one band, the same operations
+/// on the same operands, so the same bits; exact, rows of one, two or four
+/// chunks, [`write_batch`]'s held rows, batch by batch. Across cells whose
+/// lattice points along axis 0 fit in two registers (a fractal tile's
+/// finer octaves, whatever their spacing), exact only:
+/// [`fill_held_fine_rows`]' rows ([`write_held_run`]), one walk for every
+/// spacing, so that a fractal's octaves run one compact path rather than
+/// the general fill's several (a 32² fBm-6 tile on AVX-512, probe, ns/sample:
+/// 4.06–4.25 → 3.08–3.19; callgrind on AVX2, 4096 tiles: 292 → 260
+/// million instructions, L1 instruction misses 2.12 → 1.46 million).
+/// Returns false, having written nothing, where the span is not such a
+/// grid.
 #[inline(always)]
-fn fill_one_cell_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span: &Span<'_, D>, out: &mut [f32]) -> bool {
+fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span: &Span<'_, D>, out: &mut [f32]) -> bool {
     let w = B::WIDTH;
     if D != 2 || K::FLAT || span.stores != Stores::Cached {
         return false;
@@ -1981,15 +1992,25 @@ fn fill_one_cell_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, sp
     let (nx, ny) = (xs.len(), ys.len());
     let chunks = nx / w;
     let fast = span.accuracy == Accuracy::Fast;
-    // The whole grid (as [`fill_bands`] chooses its bands from all of axis 1).
-    let shape = if fast { (1..=HELD_BAND_CHUNKS).contains(&chunks) && ny >= BAND_ROWS } else { matches!(chunks, 1 | 2 | 4) };
-    if !shape || nx != chunks * w || !(1..=ONE_CELL_ROWS).contains(&ny) || span.start != 0 || out.len() != nx * ny {
+    if !(1..=HELD_BAND_CHUNKS).contains(&chunks) || nx != chunks * w || !(1..=ONE_CELL_ROWS).contains(&ny) || span.start != 0 || out.len() != nx * ny {
         return false;
     }
-    // Most grids that are not inside one cell leave here, before any split
-    // (split first, each of a 32² fBm-6 tile's five octaves across cells
-    // paid about 390 instructions more: callgrind, AVX2).
-    if !same_cell_at_ends(kind, xs) || !same_cell_at_ends(kind, ys) {
+    // Most grids this does not take leave here, before any split (split
+    // first, each of a 32² fBm-6 tile's five octaves across cells paid
+    // about 390 instructions more: callgrind, AVX2). An axis runs one way,
+    // so its ends' cells bound its span of cells from below.
+    let (Some(&x0), Some(&x1)) = (xs.first(), xs.last()) else {
+        return false;
+    };
+    let ends = |a: f32, b: f32| (i64::from(kind.split::<f32>(a).0) - i64::from(kind.split::<f32>(b).0)).unsigned_abs();
+    if ends(x0, x1) + 2 > 2 * w as u64 {
+        return false;
+    }
+    // Fast, only a grid inside one cell, whole in a band (as [`fill_bands`]
+    // chooses its bands from all of axis 1): across cells the exact rows'
+    // bits differ from the bands' by an ulp here and there, and a fast
+    // tile must equal the same points of a larger grid.
+    if fast && (ny < BAND_ROWS || ends(x0, x1) != 0 || ends(ys[0], ys[ny - 1]) != 0) {
         return false;
     }
     // Axis 0 by chunk and axis 1 by row, as [`split_axis`] splits them.
@@ -2013,41 +2034,93 @@ fn fill_one_cell_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, sp
         f.store(&mut frac1[r..]);
         kind.fade(f).store(&mut fade1[r..]);
     }
-    let (cell0, cell1) = (cells[0], cells1[0]);
-    let one_cell = cells[..nx].iter().fold(true, |all, &c| all & (c == cell0)) & cells1[..ny].iter().fold(true, |all, &c| all & (c == cell1));
-    if !one_cell {
+    // The span of cells along axis 0 (not from its ends alone: past ±2³¹
+    // the cells wrap).
+    let (min_cell, max_cell) = super::cell_range(&cells[..nx]);
+    let cell1 = cells1[0];
+    let one_cell = min_cell == max_cell && cells1[..ny].iter().fold(true, |all, &c| all & (c == cell1));
+    let axis0 = &mut axis0[..chunks];
+    if one_cell && (fast || chunks != 3) {
+        // The cell's lattice points as [`PointRows::plane`] hashes them:
+        // row r along axis 0 from the cell's lower point, its lanes 0 and
+        // 1 the cell's corners 2r and 2r + 1.
+        let mut hashed = [Corner::<B>::zero(); 2];
+        for (r, h) in hashed.iter_mut().enumerate() {
+            let mut row = [0i32; D];
+            row[1] = cell1.wrapping_add(r as i32);
+            *h = fields_of(kind.point_row::<B>(min_cell, row), K::HASHED);
+        }
+        if fast {
+            one_cell_band::<K, B, D>(kind, &hashed, axis0, (&frac1[..ny], &fade1[..ny]), out);
+        } else {
+            one_cell_rows::<K, B, D>(kind, &hashed, axis0, (&frac1, &fade1, ny), out);
+        }
+        return true;
+    }
+    // (Fast across cells: cells wrapped past ±2³¹, the general fill's.)
+    if fast {
         return false;
     }
-    // The cell's lattice points as [`PointRows::plane`] hashes them: row r
-    // along axis 0 from the cell's lower point, its lanes 0 and 1 the
-    // cell's corners 2r and 2r + 1.
-    let mut hashed = [Corner::<B>::zero(); 2];
-    for (r, h) in hashed.iter_mut().enumerate() {
-        let mut row = [0i32; D];
-        row[1] = cell1.wrapping_add(r as i32);
-        *h = fields_of(kind.point_row::<B>(cell0, row), K::HASHED);
+    // Lattice points along axis 0: the cells' lower points and one more.
+    let points = (i64::from(max_cell) - i64::from(min_cell) + 2) as u64;
+    if points > 2 * w as u64 {
+        return false;
     }
-    let axis0 = &axis0[..chunks];
-    if fast {
-        one_cell_band::<K, B, D>(kind, &hashed, axis0, (&frac1[..ny], &fade1[..ny]), out);
+    // Each lane's cell, counted from the smallest ([`HeldLanes`]).
+    for (k, a) in axis0.iter_mut().enumerate() {
+        for (l, &c) in a.lane.iter_mut().zip(&cells[k * w..(k + 1) * w]) {
+            *l = c.wrapping_sub(min_cell);
+        }
+    }
+    if points <= w as u64 {
+        small_tile_runs::<K, B, D, false>(kind, axis0, min_cell, (&cells1[..ny], &frac1[..ny], &fade1[..ny]), out);
     } else {
-        one_cell_rows::<K, B, D>(kind, &hashed, axis0, (&frac1, &fade1, ny), out);
+        small_tile_runs::<K, B, D, true>(kind, axis0, min_cell, (&cells1[..ny], &frac1[..ny], &fade1[..ny]), out);
     }
     true
 }
 
-/// Whether an axis's first and last coordinates lie in the same cell: for
-/// a grid's axis, which runs one way, a condition of its lying in one cell
-/// (not enough where cells wrap, which [`fill_one_cell_tile`] checks after).
+/// [`fill_small_tile`]'s rows across cells, run by run of rows in one cell
+/// along axis 1: the plane's two rows of lattice points hashed as
+/// [`PointRows::plane`] hashes them (from the smallest cell along axis 0;
+/// one register each, or two where `TWO`), then its rows.
 #[inline(always)]
-fn same_cell_at_ends<K: Lattice<D>, const D: usize>(kind: &K, axis: &[f32]) -> bool {
-    match (axis.first(), axis.last()) {
-        (Some(&a), Some(&b)) => kind.split::<f32>(a).0 == kind.split::<f32>(b).0,
-        _ => false,
+fn small_tile_runs<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(
+    kind: &K,
+    axis0: &[ChunkAxis],
+    min_cell: i32,
+    (cells1, frac1, fade1): (&[i32], &[f32], &[f32]),
+    out: &mut [f32],
+) {
+    let (nx, w) = (axis0.len() * B::WIDTH, B::WIDTH);
+    let mut y0 = 0;
+    // The last plane's upper row of points, and its cell: the next plane
+    // up's lower row. (Kept apart from `hashed`, which lives in registers
+    // within a run; held across runs, all of it was zeroed on the stack.)
+    let mut upper: Option<(i32, [Corner<B>; 2])> = None;
+    while let Some(&cell) = cells1.get(y0) {
+        let y1 = run_end(cells1, y0, w);
+        let mut hashed = [[Corner::<B>::zero(); 2]; MAX_CORNERS / 2];
+        for (r, held) in hashed.iter_mut().enumerate().take(PointRows::<D>::PER_PLANE) {
+            let mut row = [0i32; D];
+            row[1] = cell.wrapping_add(r as i32);
+            match upper {
+                Some((c, points)) if r == 0 && c == row[1] => *held = points,
+                _ => {
+                    for (j, h) in held.iter_mut().enumerate().take(if TWO { 2 } else { 1 }) {
+                        *h = fields_of(kind.point_row::<B>(min_cell.wrapping_add((j * w) as i32), row), K::HASHED);
+                    }
+                }
+            }
+        }
+        upper = Some((cell.wrapping_add(1), hashed[1]));
+        let rows = (&frac1[y0..y1], &fade1[y0..y1], [0.0; D]);
+        write_held_run::<K, B, D, TWO>(kind, &hashed, axis0, rows, &mut out[y0 * nx..y1 * nx]);
+        y0 = y1;
     }
 }
 
-/// [`fill_one_cell_tile`]'s band ([`Accuracy::Fast`]): the cell's corners
+/// [`fill_small_tile`]'s band ([`Accuracy::Fast`]): the cell's corners
 /// bound at v = 0 and v = 1 as [`bind_plane`] binds them, its half-blend
 /// polynomials and each chunk's band coefficients, all in registers.
 #[inline(always)]
@@ -2087,7 +2160,7 @@ fn one_cell_band<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, hashed:
 /// grid's rows: two rows of records of up to six fields.
 const ONE_CELL_POINT_FIELDS: usize = 2 * 6;
 
-/// [`fill_one_cell_tile`]'s exact rows: batches of up to WIDTH rows, each
+/// [`fill_small_tile`]'s exact rows: batches of up to WIDTH rows, each
 /// with the cell's two points bound for its rows as [`write_batch`] binds
 /// them (in a table on the stack), then written by [`write_held_rows`].
 #[inline(always)]
@@ -2108,7 +2181,7 @@ fn one_cell_rows<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let mut table = [0f32; 2 * ONE_CELL_POINT_FIELDS * 16];
     let (weights, mut fs) = row_lanes::<K, B, D>(kind, [0.0; D]);
     for y in (0..ny).step_by(w) {
-        // (`y + w ≤ ONE_CELL_ROWS`, as in [`fill_one_cell_tile`].)
+        // (`y + w ≤ ONE_CELL_ROWS`, as in [`fill_small_tile`].)
         fs[1] = B::from_slice(&frac1[y..]);
         for (v, slots) in table.chunks_exact_mut(per_point * 16).take(2).enumerate() {
             for (r, &point) in hashed.iter().enumerate() {
@@ -2161,7 +2234,7 @@ fn lane_of<B: BatchLanes>(r: Corner<B>, j: usize) -> Corner<B> {
 }
 
 /// Fields held in registers, one each (the single-cell sources of
-/// [`fill_one_cell_tile`]: every lane at the same entry).
+/// [`fill_small_tile`]: every lane at the same entry).
 impl<B: BatchLanes> Source<B> for [B; 16] {
     #[inline(always)]
     fn field(&self, k: usize, _next: usize) -> B {

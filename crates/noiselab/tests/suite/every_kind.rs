@@ -297,6 +297,17 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         Grid::new(axes([6.0, 0.0, -1.0]), [0.5; D], axes([32, 8, 2])),
         Grid::new(axes([1.3, -7.0, 0.0]), [0.5; D], axes([12, 6, 2])),
         Grid::new(axes([3.1, 0.6, 0.2]), axes([-0.3, 0.2, 0.7]), axes([20, 9, 2])),
+        // 2D tiles of whole chunks across cells, each plane's points held
+        // in registers (one walk for any spacing): three chunks at 1/8 with
+        // axis 1 descending; three at 1/4 (AVX2) with rows that skip
+        // cells; one chunk of 16 or two of 8 down 64 rows at 1/2, on the
+        // lattice lines; and three chunks inside one cell (48 columns at
+        // 1/128, the rows of 24 at 1/64 across two cells).
+        Grid::new(axes([5.0, 2.0, 0.0]), axes([0.125, -0.25, 0.5]), axes([48, 24, 2])),
+        Grid::new(axes([-1.0, 0.4, 0.0]), axes([0.25, 1.7, 0.5]), axes([24, 10, 2])),
+        Grid::new(axes([0.0, -9.0, 0.0]), [0.5; D], axes([16, 64, 2])),
+        Grid::new(axes([2.0, 0.25, 0.0]), axes([1.0 / 128.0, 1.0 / 64.0, 0.5]), axes([48, 16, 2])),
+        Grid::new(axes([2.5, 0.25, 0.0]), [1.0 / 64.0; D], axes([24, 40, 2])),
         // Non-finite coordinates (NaN where the scalar API gives NaN): the
         // last axis at 0.3 + i·∞ (NaN, then +∞), and axis 0 from 3.0e38 by
         // 1e37, past f32::MAX (≈ 3.4e38) from column 5 of each row.
