@@ -1969,17 +1969,21 @@ const ONE_CELL_ROWS: usize = 64;
 /// than the instruction cache holds (performance-history, stop 73).
 ///
 /// Rows of one to [`HELD_BAND_CHUNKS`] whole chunks, up to
-/// [`ONE_CELL_ROWS`] of them. Inside one cell: [`Accuracy::Fast`], at
-/// least [`BAND_ROWS`] rows, [`fill_bands`]' one band, the same operations
-/// on the same operands, so the same bits; exact, rows of one, two or four
-/// chunks, [`write_batch`]'s held rows, batch by batch. Across cells whose
-/// lattice points along axis 0 fit in two registers (a fractal tile's
-/// finer octaves, whatever their spacing), exact only:
+/// [`ONE_CELL_ROWS`] of them, whose lattice points along axis 0 fit in two
+/// registers. Exact inside one cell, rows of one, two or four chunks:
+/// [`write_batch`]'s held rows, batch by batch. Otherwise, run by run of
+/// rows in one cell along axis 1 ([`small_tile_runs`]): exact,
 /// [`fill_held_fine_rows`]' rows ([`write_held_run`]), one walk for every
 /// spacing, so that a fractal's octaves run one compact path rather than
 /// the general fill's several (a 32² fBm-6 tile on AVX-512, probe, ns/sample:
 /// 4.06–4.25 → 3.08–3.19; callgrind on AVX2, 4096 tiles: 292 → 260
 /// million instructions, L1 instruction misses 2.12 → 1.46 million).
+/// [`Accuracy::Fast`] takes that walk too, with what the general fill
+/// chooses for the same grid ([`fast_small_tile`]), so that a fast tile
+/// equals the same points of a larger grid: [`fill_bands`]' bands
+/// ([`write_held_bands`]: the same operations on the same operands) or
+/// the exact held rows; where the general fill would take its row
+/// polynomials instead, the tile is left to it.
 /// Returns false, having written nothing, where the span is not such a
 /// grid.
 #[inline(always)]
@@ -2002,15 +2006,8 @@ fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span:
     let (Some(&x0), Some(&x1)) = (xs.first(), xs.last()) else {
         return false;
     };
-    let ends = |a: f32, b: f32| (i64::from(kind.split::<f32>(a).0) - i64::from(kind.split::<f32>(b).0)).unsigned_abs();
-    if ends(x0, x1) + 2 > 2 * w as u64 {
-        return false;
-    }
-    // Fast, only a grid inside one cell, whole in a band (as [`fill_bands`]
-    // chooses its bands from all of axis 1): across cells the exact rows'
-    // bits differ from the bands' by an ulp here and there, and a fast
-    // tile must equal the same points of a larger grid.
-    if fast && (ny < BAND_ROWS || ends(x0, x1) != 0 || ends(ys[0], ys[ny - 1]) != 0) {
+    let ends = (i64::from(kind.split::<f32>(x0).0) - i64::from(kind.split::<f32>(x1).0)).unsigned_abs();
+    if ends + 2 > 2 * w as u64 {
         return false;
     }
     // Axis 0 by chunk and axis 1 by row, as [`split_axis`] splits them.
@@ -2040,7 +2037,7 @@ fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span:
     let cell1 = cells1[0];
     let one_cell = min_cell == max_cell && cells1[..ny].iter().fold(true, |all, &c| all & (c == cell1));
     let axis0 = &mut axis0[..chunks];
-    if one_cell && (fast || chunks != 3) {
+    if one_cell && !fast && chunks != 3 {
         // The cell's lattice points as [`PointRows::plane`] hashes them:
         // row r along axis 0 from the cell's lower point, its lanes 0 and
         // 1 the cell's corners 2r and 2r + 1.
@@ -2050,16 +2047,8 @@ fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span:
             row[1] = cell1.wrapping_add(r as i32);
             *h = fields_of(kind.point_row::<B>(min_cell, row), K::HASHED);
         }
-        if fast {
-            one_cell_band::<K, B, D>(kind, &hashed, axis0, (&frac1[..ny], &fade1[..ny]), out);
-        } else {
-            one_cell_rows::<K, B, D>(kind, &hashed, axis0, (&frac1, &fade1, ny), out);
-        }
+        one_cell_rows::<K, B, D>(kind, &hashed, axis0, (&frac1, &fade1, ny), out);
         return true;
-    }
-    // (Fast across cells: cells wrapped past ±2³¹, the general fill's.)
-    if fast {
-        return false;
     }
     // Lattice points along axis 0: the cells' lower points and one more.
     let points = (i64::from(max_cell) - i64::from(min_cell) + 2) as u64;
@@ -2072,20 +2061,58 @@ fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span:
             *l = c.wrapping_sub(min_cell);
         }
     }
-    if points <= w as u64 {
-        small_tile_runs::<K, B, D, false>(kind, axis0, min_cell, (&cells1[..ny], &frac1[..ny], &fade1[..ny]), out);
-    } else {
-        small_tile_runs::<K, B, D, true>(kind, axis0, min_cell, (&cells1[..ny], &frac1[..ny], &fade1[..ny]), out);
+    // (A `match` on `fast`, not `bool::then`: its closure was left out of
+    // line, outside the batch driver's instruction-set clone.)
+    let bands = match fast {
+        true => match fast_small_tile::<B>(axis0, (&cells[..nx], &cells1[..ny]), points as usize) {
+            Some(bands) => bands,
+            None => return false,
+        },
+        false => false,
+    };
+    let rows = (&cells1[..ny], &frac1[..ny], &fade1[..ny]);
+    match (points <= w as u64, bands) {
+        (true, false) => small_tile_runs::<K, B, D, false, false>(kind, axis0, min_cell, rows, out),
+        (false, false) => small_tile_runs::<K, B, D, true, false>(kind, axis0, min_cell, rows, out),
+        (true, true) => small_tile_runs::<K, B, D, false, true>(kind, axis0, min_cell, rows, out),
+        (false, true) => small_tile_runs::<K, B, D, true, true>(kind, axis0, min_cell, rows, out),
     }
     true
+}
+
+/// What [`fill_span_with`] does with a fast small tile of whole chunks
+/// (`axis0`, each lane's cell counted from the smallest; `cells`, `cells1`:
+/// each column's and row's cell) whose `points` lattice points along axis
+/// 0 fit in two registers, decided as it decides: `Some(true)` for its
+/// bands (cells holding whole chunks, or narrower cells that every chunk
+/// reaches within one register, with points past one register; either
+/// with enough rows a cell), `Some(false)` for its exact held rows, `None`
+/// for its row polynomials (cells holding whole chunks but few rows).
+#[inline(always)]
+fn fast_small_tile<B: BatchLanes>(axis0: &[ChunkAxis], (cells, cells1): (&[i32], &[i32]), points: usize) -> Option<bool> {
+    let w = B::WIDTH;
+    let long_runs = cells.len() >= run_count(cells) * w;
+    let min_rows = if long_runs { BAND_ROWS } else { narrow_band_rows::<B>(cells.len()) };
+    let tall = cells1.len() >= min_rows * run_count(cells1);
+    if long_runs {
+        return tall.then_some(true);
+    }
+    let near = axis0.iter().all(|a| {
+        let lanes = &a.lane[..w];
+        let (first, last) = cell_span(lanes);
+        let consecutive = lanes.iter().enumerate().fold(true, |all, (j, &c)| all & (c as usize == first + j));
+        !consecutive && last - first + 1 < w
+    });
+    Some(tall && near && points > w)
 }
 
 /// [`fill_small_tile`]'s rows across cells, run by run of rows in one cell
 /// along axis 1: the plane's two rows of lattice points hashed as
 /// [`PointRows::plane`] hashes them (from the smallest cell along axis 0;
-/// one register each, or two where `TWO`), then its rows.
+/// one register each, or two where `TWO`), then its rows: exact
+/// ([`write_held_run`]), or, where `BANDS`, as one band ([`write_held_bands`]).
 #[inline(always)]
-fn small_tile_runs<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(
+fn small_tile_runs<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool, const BANDS: bool>(
     kind: &K,
     axis0: &[ChunkAxis],
     min_cell: i32,
@@ -2114,45 +2141,94 @@ fn small_tile_runs<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool
             }
         }
         upper = Some((cell.wrapping_add(1), hashed[1]));
-        let rows = (&frac1[y0..y1], &fade1[y0..y1], [0.0; D]);
-        write_held_run::<K, B, D, TWO>(kind, &hashed, axis0, rows, &mut out[y0 * nx..y1 * nx]);
+        let (frac, fade) = (&frac1[y0..y1], &fade1[y0..y1]);
+        let to = &mut out[y0 * nx..y1 * nx];
+        if BANDS {
+            write_held_bands::<K, B, D, TWO>(kind, &hashed, axis0, (frac, fade), to);
+        } else {
+            write_held_run::<K, B, D, TWO>(kind, &hashed, axis0, (frac, fade, [0.0; D]), to);
+        }
         y0 = y1;
     }
 }
 
-/// [`fill_small_tile`]'s band ([`Accuracy::Fast`]): the cell's corners
-/// bound at v = 0 and v = 1 as [`bind_plane`] binds them, its half-blend
-/// polynomials and each chunk's band coefficients, all in registers.
+/// One band of [`small_tile_runs`] ([`Accuracy::Fast`]): [`fill_bands`]'
+/// band of a 2D plane with every table held in registers. The plane's
+/// point rows (`hashed`) bound at v = 0 and v = 1 as [`bind_plane`] binds
+/// them; each cell's four half-blend polynomials, the cells in lanes
+/// (register j: cells j · WIDTH on), from its corners permuted out of the
+/// points; each chunk's band coefficients from its lanes' cells'
+/// half-blends, permuted out by [`ChunkAxis::lane`] (all lanes the same
+/// cell where cells hold whole chunks, as [`fill_bands`]' splat reads it).
+/// The same operations on the same operands, lane by lane, as
+/// [`fill_bands`], so the same bits.
 #[inline(always)]
-fn one_cell_band<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, hashed: &[Corner<B>; 2], axis0: &[ChunkAxis], rows: (&[f32], &[f32]), out: &mut [f32]) {
-    // (Written out: `array::map` was left out of line, outside the batch
-    // driver's instruction-set clone.)
-    let empty = Held::<B> { corners: [Corner::zero(); MAX_CORNERS], fields: K::BOUND };
-    let mut held = [Held { ..empty }, empty];
-    for (r, &point) in hashed.iter().enumerate() {
-        for (v, bound) in held.iter_mut().enumerate() {
-            let mut fs = [B::cst(0.0); D];
-            fs[1] = B::cst(v as f64);
-            let record = fields_of(kind.bind(point, offsets(fs, 2 * r)), K::BOUND);
-            for next in 0..2 {
-                bound.corners[2 * r + next] = lane_of(record, next);
-            }
-        }
-    }
+fn write_held_bands<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(
+    kind: &K,
+    hashed: &[[Corner<B>; 2]; MAX_CORNERS / 2],
+    axis0: &[ChunkAxis],
+    rows: (&[f32], &[f32]),
+    out: &mut [f32],
+) {
+    let w = B::WIDTH;
+    // Two plain locals, not an array of them: held in an array, the
+    // points were zeroed and read through the stack (a fast 32² tile took
+    // twice its time, 15 % of it in memset: perf, AVX-512).
+    let lower = bound_held::<K, B, D, TWO>(kind, hashed, 0.0);
+    let upper = bound_held::<K, B, D, TWO>(kind, hashed, 1.0);
     let weights = half_blend_weights::<K, B, D>(kind, [0.0; D]);
-    let mut halves = [B::cst(0.0); 16];
-    for (h, to) in halves.chunks_exact_mut(4).enumerate() {
-        to.copy_from_slice(&polynomial(kind, &held[h & 1], &weights[h], (h >> 1, 2)));
+    let mut halves = [[B::cst(0.0); 16]; 2];
+    for (j, to) in halves.iter_mut().enumerate().take(if TWO { 2 } else { 1 }) {
+        let lane = B::iota().add_c((j * w) as i32);
+        for (h, weights) in weights.iter().enumerate() {
+            let cells = HeldLanes { points: if h & 1 == 0 { &lower } else { &upper }, lane: [lane, lane.add_c(1)] };
+            to[4 * h..4 * h + 4].copy_from_slice(&polynomial(kind, &cells, weights, (h >> 1, 2)));
+        }
     }
     let mut band = [[B::cst(0.0); 4]; HELD_BAND_CHUNKS];
     for (c, axis) in band.iter_mut().zip(axis0) {
-        *c = band_coefficients(half_blends::<K, B, D>(axis.lanes(), &halves));
+        let lanes = HeldHalves::<B, TWO> { halves: &halves, lane: B::load_int(&axis.lane) };
+        *c = band_coefficients(half_blends::<K, B, D>(axis.lanes(), &lanes));
     }
     match axis0.len() {
         1 => write_band_rows::<B, 1>(out, rows, &[band[0]]),
         2 => write_band_rows::<B, 2>(out, rows, &[band[0], band[1]]),
         3 => write_band_rows::<B, 3>(out, rows, &[band[0], band[1], band[2]]),
         _ => write_band_rows::<B, 4>(out, rows, &band),
+    }
+}
+
+/// A plane's point rows (`hashed`) bound at position `v` along axis 1 and
+/// 0 on the others, as [`bind_plane`] binds them ([`write_held_bands`]).
+#[inline(always)]
+fn bound_held<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(kind: &K, hashed: &[[Corner<B>; 2]; MAX_CORNERS / 2], v: f64) -> HeldPoints<B, TWO> {
+    let mut fs = [B::cst(0.0); D];
+    fs[1] = B::cst(v);
+    let mut bound = HeldPoints::<B, TWO> { rows: [[Corner::zero(); 2]; MAX_CORNERS / 2], fields: K::BOUND };
+    for (row, (held, b)) in hashed.iter().zip(&mut bound.rows).enumerate().take(PointRows::<D>::PER_PLANE) {
+        let offsets = offsets(fs, 2 * row);
+        for (h, b) in held.iter().zip(b).take(if TWO { 2 } else { 1 }) {
+            *b = kind.bind(*h, offsets);
+        }
+    }
+    bound
+}
+
+/// Each cell's half-blend polynomials in registers ([`write_held_bands`]:
+/// register j's lane l for cell j · WIDTH + l), read at each lane's cell.
+struct HeldHalves<'a, B: BatchLanes, const TWO: bool> {
+    halves: &'a [[B; 16]; 2],
+    lane: B::Int,
+}
+
+impl<B: BatchLanes, const TWO: bool> Source<B> for HeldHalves<'_, B, TWO> {
+    #[inline(always)]
+    fn field(&self, k: usize, _next: usize) -> B {
+        if TWO {
+            B::permute2(self.halves[0][k], self.halves[1][k], self.lane)
+        } else {
+            B::permute(self.halves[0][k], self.lane)
+        }
     }
 }
 
@@ -2231,15 +2307,6 @@ fn lane_of<B: BatchLanes>(r: Corner<B>, j: usize) -> Corner<B> {
         *v = B::permute(B::from_bits(*v), at).to_bits();
     }
     spread
-}
-
-/// Fields held in registers, one each (the single-cell sources of
-/// [`fill_small_tile`]: every lane at the same entry).
-impl<B: BatchLanes> Source<B> for [B; 16] {
-    #[inline(always)]
-    fn field(&self, k: usize, _next: usize) -> B {
-        self[k]
-    }
 }
 
 /// [`Accuracy::Fast`]'s fill of whole rows where cells hold several rows

@@ -227,3 +227,67 @@ fn check_tile<N: Noise<2>>(noise: &N, origin: [f64; 2], step: [f64; 2], size: [u
         }
     }
 }
+
+/// Fast fills of small 2D tiles (one to four whole chunks a row, up to 64
+/// rows), which the library fills in registers whether they lie inside one
+/// cell or across several, give the bits of the general fill of the same
+/// grid (reached here through streamed stores, which the tiles' path does
+/// not take): the same bands where the general fill takes bands, with
+/// cells wider than the lanes or narrower, and the same exact rows where
+/// it takes exact rows, at every level.
+#[test]
+fn fast_small_tiles_equal_the_general_fill() {
+    let tiles = [
+        // A 32² fBm-6 tile's octaves at 1/32.
+        ([2.0, 5.0], [1.0 / 32.0, 1.0 / 32.0], [32, 32]),
+        ([2.0, 5.0], [1.0 / 16.0, 1.0 / 16.0], [32, 32]),
+        ([2.0, 5.0], [1.0 / 8.0, 1.0 / 8.0], [32, 32]),
+        ([2.0, 5.0], [1.0 / 4.0, 1.0 / 4.0], [32, 32]),
+        ([2.0, 5.0], [1.0 / 2.0, 1.0 / 2.0], [32, 32]),
+        // Cells holding whole chunks, across cells on both axes, off the
+        // lattice lines; descending along axis 0.
+        ([0.75, 0.6], [1.0 / 32.0, 1.0 / 32.0], [32, 40]),
+        ([1.0, 0.5], [1.0 / 64.0, 1.0 / 32.0], [64, 32]),
+        ([-0.5, 3.0], [-1.0 / 16.0, 1.0 / 64.0], [48, 40]),
+        // Four rows a cell: bands; five runs of rows in sixteen: row
+        // polynomials (left to the general fill); three rows in one cell.
+        ([5.25, -2.0], [1.0 / 16.0, 1.0 / 4.0], [64, 16]),
+        ([5.25, -1.9], [1.0 / 16.0, 1.0 / 4.0], [64, 16]),
+        ([0.0, 0.0], [1.0 / 32.0, 1.0 / 32.0], [48, 3]),
+        // Narrow cells with many rows: within one register of points, or
+        // two (AVX-512 at 32 columns, AVX2 at 16), where the general fill
+        // takes bands.
+        ([0.3, -1.7], [1.0 / 2.0, 1.0 / 8.0], [32, 40]),
+        ([0.3, -1.7], [1.0 / 2.0, 1.0 / 8.0], [16, 24]),
+        ([0.1, 0.2], [0.75, 1.0 / 8.0], [16, 32]),
+        // Each column its own cell (plain loads in the general fill: exact
+        // rows), and cells a chunk reaches over two registers.
+        ([0.5, 0.0], [1.0, 1.0 / 8.0], [16, 32]),
+        ([-0.6, 3.1], [1.5, 1.0 / 8.0], [16, 32]),
+        // Far from the origin.
+        ([10000.0, -7000.5], [1.0 / 8.0, 1.0 / 16.0], [32, 64]),
+    ];
+    for (origin, step, size) in tiles {
+        let tile = Grid::new(origin, step, size);
+        check_general(&Improved::new(4), &tile);
+        check_general(&Improved::new(1).with_variant(ImprovedVariant::Original2002), &tile);
+        check_general(&Improved::new(2).with_period([5, 3, 0, 0]).unwrap(), &tile);
+        check_general(&Classic::new(2), &tile);
+        check_general(&Modified::new(3), &tile);
+    }
+}
+
+#[inline(never)]
+fn check_general<N: Noise<2>>(noise: &N, tile: &Grid<2>) {
+    let axes = Axes::of(tile);
+    for level in SimdLevel::available() {
+        let mut general = vec![f32::NAN; tile.len()];
+        noise.dispatch_span(level, Span { axes: &axes, start: 0, accuracy: Accuracy::Fast, stores: Stores::Streamed }, &mut general);
+        let mut out = vec![f32::NAN; tile.len()];
+        fill_grid_at(level, noise, tile, &mut out, Accuracy::Fast).unwrap();
+        for (k, (&t, &g)) in out.iter().zip(&general).enumerate() {
+            let (i, j) = (k % tile.size[0], k / tile.size[0]);
+            assert_eq!(t.to_bits(), g.to_bits(), "{level:?}, tile {tile:?}, point ({i}, {j}): {t:e} vs {g:e}");
+        }
+    }
+}
