@@ -2097,12 +2097,7 @@ fn fast_small_tile<B: BatchLanes>(axis0: &[ChunkAxis], (cells, cells1): (&[i32],
     if long_runs {
         return tall.then_some(true);
     }
-    let near = axis0.iter().all(|a| {
-        let lanes = &a.lane[..w];
-        let (first, last) = cell_span(lanes);
-        let consecutive = lanes.iter().enumerate().fold(true, |all, (j, &c)| all & (c as usize == first + j));
-        !consecutive && last - first + 1 < w
-    });
+    let near = axis0.iter().all(|a| chunk_cells(&a.lane[..w]).reach(w) == Reach::Near);
     Some(tall && near && points > w)
 }
 
