@@ -1746,14 +1746,8 @@ fn write_held_run<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>
     for ((&frac, &fade), out) in frac1.iter().zip(fade1).zip(out.chunks_exact_mut(nx)) {
         fs[1] = B::splat(frac);
         weights[1] = B::splat(fade);
-        let mut bound = HeldPoints::<B, TWO> { rows: [[Corner::zero(); 2]; MAX_CORNERS / 2], fields: K::BOUND };
-        for (row, (held, b)) in hashed.iter().zip(&mut bound.rows).enumerate().take(PointRows::<D>::PER_PLANE) {
-            let offsets = offsets(fs, 2 * row);
-            for (h, b) in held.iter().zip(b).take(if TWO { 2 } else { 1 }) {
-                *b = kind.bind(*h, offsets);
-            }
-        }
-        FineRow { points: bound, chunk_axis, weights }.write::<K>(kind, off_rest || frac != 0.0, out);
+        let points = bound_held::<K, B, D, TWO>(kind, hashed, fs);
+        FineRow { points, chunk_axis, weights }.write::<K>(kind, off_rest || frac != 0.0, out);
     }
 }
 
@@ -2169,8 +2163,13 @@ fn write_held_bands<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: boo
     // Two plain locals, not an array of them: held in an array, the
     // points were zeroed and read through the stack (a fast 32² tile took
     // twice its time, 15 % of it in memset: perf, AVX-512).
-    let lower = bound_held::<K, B, D, TWO>(kind, hashed, 0.0);
-    let upper = bound_held::<K, B, D, TWO>(kind, hashed, 1.0);
+    let at_row = |v: f64| {
+        let mut fs = [B::cst(0.0); D];
+        fs[1] = B::cst(v);
+        fs
+    };
+    let lower = bound_held::<K, B, D, TWO>(kind, hashed, at_row(0.0));
+    let upper = bound_held::<K, B, D, TWO>(kind, hashed, at_row(1.0));
     let weights = half_blend_weights::<K, B, D>(kind, [0.0; D]);
     let mut halves = [[B::cst(0.0); 16]; 2];
     for (j, to) in halves.iter_mut().enumerate().take(if TWO { 2 } else { 1 }) {
@@ -2193,12 +2192,15 @@ fn write_held_bands<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: boo
     }
 }
 
-/// A plane's point rows (`hashed`) bound at position `v` along axis 1 and
-/// 0 on the others, as [`bind_plane`] binds them ([`write_held_bands`]).
+/// A plane's point rows held in registers (`hashed`) bound at the
+/// positions `fs` within their cells, as [`bind_plane`] binds them: a row
+/// of [`write_held_run`], a band edge of [`write_held_bands`].
 #[inline(always)]
-fn bound_held<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(kind: &K, hashed: &[[Corner<B>; 2]; MAX_CORNERS / 2], v: f64) -> HeldPoints<B, TWO> {
-    let mut fs = [B::cst(0.0); D];
-    fs[1] = B::cst(v);
+fn bound_held<K: Lattice<D>, B: BatchLanes, const D: usize, const TWO: bool>(
+    kind: &K,
+    hashed: &[[Corner<B>; 2]; MAX_CORNERS / 2],
+    fs: [B; D],
+) -> HeldPoints<B, TWO> {
     let mut bound = HeldPoints::<B, TWO> { rows: [[Corner::zero(); 2]; MAX_CORNERS / 2], fields: K::BOUND };
     for (row, (held, b)) in hashed.iter().zip(&mut bound.rows).enumerate().take(PointRows::<D>::PER_PLANE) {
         let offsets = offsets(fs, 2 * row);
