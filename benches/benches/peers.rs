@@ -267,7 +267,11 @@ mod nz {
     pub type Fbm = LayeredNoise<Normed<f32>, Persistence, FractalLayers<Octave<Perlin>>>;
 
     pub fn fbm() -> Fbm {
-        LayeredNoise::new(Normed::default(), Persistence(0.5), FractalLayers { layer: Octave(Perlin::default()), lacunarity: 2.0, amount: 6 })
+        LayeredNoise::new(
+            Normed::default(),
+            Persistence(0.5),
+            FractalLayers { layer: Octave(Perlin::default()), lacunarity: 2.0, amount: 6 },
+        )
     }
 }
 
@@ -325,7 +329,10 @@ mod qn {
     #[dispatch_simd(A)]
     pub fn batch3<G: BatchGenerator<3>>(side: usize, out: &mut [f32]) {
         let grid = Grid::<3, A>::new(side, side, side);
-        BatchNoise::<3, Fbm, G>::builder(grid.x_iter(), grid.y_iter(), grid.z_iter()).seed(1337).frequency(FREQ).fill(out);
+        BatchNoise::<3, Fbm, G>::builder(grid.x_iter(), grid.y_iter(), grid.z_iter())
+            .seed(1337)
+            .frequency(FREQ)
+            .fill(out);
     }
 
     /// Batch API on arbitrary points, one slice per axis, frequency 1.
@@ -472,7 +479,9 @@ fn tiles_2d(c: &mut Criterion) {
     let tiles: Vec<(usize, usize)> = (0..per_side * per_side).map(|t| (t % per_side, t / per_side)).collect();
     let grids: Vec<Grid<2>> = tiles
         .iter()
-        .map(|&(i, j)| Grid::new([(i * TILE) as f64 * SPACING, (j * TILE) as f64 * SPACING], [SPACING; 2], [TILE, TILE]))
+        .map(|&(i, j)| {
+            Grid::new([(i * TILE) as f64 * SPACING, (j * TILE) as f64 * SPACING], [SPACING; 2], [TILE, TILE])
+        })
         .collect();
     let mut out = buffer::<f32>(n);
     let out = &mut out[..];
@@ -533,7 +542,8 @@ fn grids_3d(c: &mut Criterion) {
     g.fill("noise-rs", out, |o| loop3_f64(o, |x, y, z| rs.get([x, y, z]) as f32));
     let lite = fnl(NoiseType::OpenSimplex2);
     g.fill("fastnoise-lite", out, |o| loop3_f32(o, |x, y, z| lite.get_noise_3d(x, y, z)));
-    let sd = *simdnoise::NoiseBuilder::gradient_3d(SIDE_3D, SIDE_3D, SIDE_3D).with_freq(sd_freq()).with_seed(SEED as i32);
+    let sd =
+        *simdnoise::NoiseBuilder::gradient_3d(SIDE_3D, SIDE_3D, SIDE_3D).with_freq(sd_freq()).with_seed(SEED as i32);
     g.fresh("simdnoise", || sd.generate().0);
     let lib = libnoise::Source::<3>::simplex(SEED as u64);
     g.fill("libnoise", out, |o| loop3_f64(o, |x, y, z| lib.sample([x, y, z]) as f32));

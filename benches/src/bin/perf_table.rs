@@ -35,8 +35,16 @@ use serde_json::Value;
 const OURS: &str = "noiselab";
 
 /// Peer columns, in order (ids as in `benches/peers.rs`).
-const PEERS: &[&str] =
-    &["noise-rs", "fastnoise-lite", "simdnoise", "libnoise", "quick-noise", "quick-noise-batch", "noise-functions", "noiz"];
+const PEERS: &[&str] = &[
+    "noise-rs",
+    "fastnoise-lite",
+    "simdnoise",
+    "libnoise",
+    "quick-noise",
+    "quick-noise-batch",
+    "noise-functions",
+    "noiz",
+];
 
 /// Workloads, in row order, with a description.
 const WORKLOADS: &[(&str, &str)] = &[
@@ -332,11 +340,17 @@ fn machine() -> String {
 
     let flags = first("flags").unwrap_or_default();
     let flags: BTreeSet<&str> = flags.split_whitespace().collect();
-    let simd: Vec<&str> = ["sse4_2", "avx", "avx2", "fma", "avx512f", "avx512bw", "avx512vl"].into_iter().filter(|f| flags.contains(f)).collect();
+    let simd: Vec<&str> = ["sse4_2", "avx", "avx2", "fma", "avx512f", "avx512bw", "avx512vl"]
+        .into_iter()
+        .filter(|f| flags.contains(f))
+        .collect();
     row("SIMD (of interest)", if simd.is_empty() { "unknown".into() } else { simd.join(" ") });
 
     let meminfo = fs::read_to_string("/proc/meminfo").unwrap_or_default();
-    let mem_kib = meminfo.lines().find_map(|l| l.strip_prefix("MemTotal:")).and_then(|v| v.split_whitespace().next()?.parse::<f64>().ok());
+    let mem_kib = meminfo
+        .lines()
+        .find_map(|l| l.strip_prefix("MemTotal:"))
+        .and_then(|v| v.split_whitespace().next()?.parse::<f64>().ok());
     if let Some(kib) = mem_kib {
         row("memory", format!("{:.1} GiB", kib / (1024.0 * 1024.0)));
     }
@@ -371,7 +385,10 @@ fn page(entries: &[Entry], machine_rows: &str, bench_command: &str, table_comman
          single thread, divided by the samples per iteration.\n",
     );
     if span_h > 3.0 {
-        let _ = writeln!(s, "\n**Note:** these results were written over {span_h:.1} hours, so they may come from more than one run.");
+        let _ = writeln!(
+            s,
+            "\n**Note:** these results were written over {span_h:.1} hours, so they may come from more than one run."
+        );
     }
     s
 }
@@ -416,7 +433,8 @@ fn run() -> Result<(), String> {
     print!("{}", tables(&entries));
     if let Some(path) = write {
         let path = if path.is_absolute() { path } else { repo_root().join(path) };
-        let mut table_command = format!("{TABLE_COMMAND} -- --write {}", path.strip_prefix(repo_root()).unwrap_or(&path).display());
+        let mut table_command =
+            format!("{TABLE_COMMAND} -- --write {}", path.strip_prefix(repo_root()).unwrap_or(&path).display());
         if criterion != default_criterion_dir() {
             let _ = write!(table_command, " --criterion {}", criterion.display());
         }
@@ -470,7 +488,10 @@ mod tests {
 
     #[test]
     fn parses_medians_per_element() {
-        let root = fixture("parse", &[("2d_perlin", "noiselab", 4_000_000.0, 4_000_000), ("2d_perlin", "noise-rs", 40_000_000.0, 4_000_000)]);
+        let root = fixture(
+            "parse",
+            &[("2d_perlin", "noiselab", 4_000_000.0, 4_000_000), ("2d_perlin", "noise-rs", 40_000_000.0, 4_000_000)],
+        );
         let entries = load(&root).unwrap();
         assert_eq!(entries.len(), 2);
         assert_eq!((entries[0].group.as_str(), entries[0].function.as_str()), ("2d_perlin", "noise-rs"));
@@ -497,18 +518,30 @@ mod tests {
         let lines: Vec<&str> = t.lines().collect();
         // header, separator, two rows; blank; header, separator, one row
         assert_eq!(lines.len(), 8, "{t}");
-        assert!(lines[0].starts_with("| workload") && lines[0].contains("| `noiselab` | `noise-rs` | `fastnoise-lite` |"), "{t}");
+        assert!(
+            lines[0].starts_with("| workload") && lines[0].contains("| `noiselab` | `noise-rs` | `fastnoise-lite` |"),
+            "{t}"
+        );
         assert_eq!(lines[1], format!("|---|{}", "---:|".repeat(1 + PEERS.len())));
         assert_eq!(
             lines[2],
             "| 2D Perlin, 2048² grid (`2d_perlin`) | 2.00 | 9.60 (4.80×) | — | — | — | **0.240 (0.120×)** | — | — | — |"
         );
-        assert_eq!(lines[3], "| 3D simplex, 256³ grid (`3d_simplex`) | **2.50** | — | — | 5.70 (2.28×) | — | — | — | — | — |");
+        assert_eq!(
+            lines[3],
+            "| 3D simplex, 256³ grid (`3d_simplex`) | **2.50** | — | — | 5.70 (2.28×) | — | — | — | — | — |"
+        );
         assert!(!t.contains("unrelated"), "{t}");
         assert!(lines[5].contains("| `noiselab` | `noiselab-fast` | fastest peer |"), "{t}");
-        assert_eq!(lines[7], "| 3D simplex, 256³ grid (`3d_simplex`) | 2.50 | **1.25 (0.500×)** | 5.70 (`simdnoise`) |");
+        assert_eq!(
+            lines[7],
+            "| 3D simplex, 256³ grid (`3d_simplex`) | 2.50 | **1.25 (0.500×)** | 5.70 (`simdnoise`) |"
+        );
         let p = page(&load(&root).unwrap(), "| CPU | x |\n", "cargo bench X", "cargo run Y");
-        assert!(p.contains("cargo bench X\ncargo run Y") && p.contains("| CPU | x |") && p.contains("one criterion run"), "{p}");
+        assert!(
+            p.contains("cargo bench X\ncargo run Y") && p.contains("| CPU | x |") && p.contains("one criterion run"),
+            "{p}"
+        );
         fs::remove_dir_all(root).unwrap();
     }
 

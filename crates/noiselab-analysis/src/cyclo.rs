@@ -78,7 +78,12 @@ pub(crate) fn null_expected_max(n: usize, k: usize) -> f64 {
 }
 
 /// Lines in `power` (the K-averaged Hann periodogram of the local energy).
-pub(crate) fn cyclostationarity(bins: &Bins, power: &[f64], fields: usize, lattice: Option<usize>) -> Cyclostationarity {
+pub(crate) fn cyclostationarity(
+    bins: &Bins,
+    power: &[f64],
+    fields: usize,
+    lattice: Option<usize>,
+) -> Cyclostationarity {
     let (means, _) = bins.ring_means(power, |_| true);
     let strongest = means.iter().skip(1).cloned().fold(0.0, f64::max);
     let valid = |ring: usize| ring >= 1 && means[ring] > 0.0 && means[ring] >= strongest * 1e-6;

@@ -115,7 +115,8 @@ pub(crate) fn periodic_periodogram(fft: &mut Fft2, field: &Field, mean: f64) -> 
     planner.plan_fft_forward(w).process(&mut d);
     let tau = 2.0 * core::f64::consts::PI;
     let one_minus = |k: usize, n: usize| C64::new(1.0, 0.0) - C64::from_polar(1.0, tau * k as f64 / n as f64);
-    let (ex, ey): (Vec<C64>, Vec<C64>) = ((0..w).map(|q| one_minus(q, w)).collect(), (0..h).map(|r| one_minus(r, h)).collect());
+    let (ex, ey): (Vec<C64>, Vec<C64>) =
+        ((0..w).map(|q| one_minus(q, w)).collect(), (0..h).map(|r| one_minus(r, h)).collect());
     let cx: Vec<f64> = (0..w).map(|q| 2.0 * (tau * q as f64 / w as f64).cos()).collect();
     let cy: Vec<f64> = (0..h).map(|r| 2.0 * (tau * r as f64 / h as f64).cos()).collect();
     let norm = 1.0 / ((w * h) as f64 * (w * h) as f64);
@@ -233,7 +234,8 @@ mod tests {
         // periodic spectrum of texture + ramp is that of the texture alone.
         let (w, h) = (64, 64);
         let tau = 2.0 * core::f64::consts::PI;
-        let texture = |i: usize, j: usize| (tau * 3.0 * i as f64 / w as f64).sin() * (tau * 5.0 * j as f64 / h as f64).cos();
+        let texture =
+            |i: usize, j: usize| (tau * 3.0 * i as f64 / w as f64).sin() * (tau * 5.0 * j as f64 / h as f64).cos();
         let plain = Field::from_fn(w, h, texture).unwrap();
         let ramped = Field::from_fn(w, h, |i, j| texture(i, j) + 0.05 * i as f64 - 0.03 * j as f64).unwrap();
         let mut fft = Fft2::new(w, h, FftDirection::Forward);

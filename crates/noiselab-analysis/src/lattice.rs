@@ -213,7 +213,10 @@ pub(crate) fn periodicity(fields: &[Field], t: usize, std: f64) -> Periodicity {
                 }
             }
         }
-        Some(PeriodicityAxis { max_abs_diff: max, rms_ratio: (sq / n as f64).sqrt() / (core::f64::consts::SQRT_2 * std) })
+        Some(PeriodicityAxis {
+            max_abs_diff: max,
+            rms_ratio: (sq / n as f64).sqrt() / (core::f64::consts::SQRT_2 * std),
+        })
     };
     Periodicity { period_px: t, x: axis(t, 0), y: axis(0, t) }
 }

@@ -173,7 +173,8 @@ pub fn analyze(fields: &[Field], options: &Options) -> Result<Report, AnalysisEr
     let cell = options.lattice.map(|l| l.period);
     let spectrum = spectral::spectrum(&bins, &hann, &periodic, k, cell);
     let fp = spectrum.peak_frequency;
-    let lattice_px = options.lattice.filter(|l| (l.period - l.period.round()).abs() < 1e-9).map(|l| l.period.round() as usize);
+    let lattice_px =
+        options.lattice.filter(|l| (l.period - l.period.round()).abs() < 1e-9).map(|l| l.period.round() as usize);
 
     let mut autocorr: Vec<C64> = padded_power.iter().map(|&p| C64::new(p, 0.0)).collect();
     Fft2::new(pw, ph, FftDirection::Inverse).process(&mut autocorr);

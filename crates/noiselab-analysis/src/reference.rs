@@ -54,9 +54,14 @@ pub fn gaussian_noise(width: usize, height: usize, sigma: f64, seed: u64) -> Fie
     Fft2::new(width, height, FftDirection::Inverse).process(&mut data);
     let values: Vec<f64> = data.iter().map(|c| c.re).collect();
     let sd = (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt();
-    Field::new(width, height, values.iter().map(|v| 0.25 * v / sd).collect()).expect("finite, non-empty reference field")
+    Field::new(width, height, values.iter().map(|v| 0.25 * v / sd).collect())
+        .expect("finite, non-empty reference field")
 }
 
 fn signed(k: usize, n: usize) -> f64 {
-    if k <= n / 2 { k as f64 } else { k as f64 - n as f64 }
+    if k <= n / 2 {
+        k as f64
+    } else {
+        k as f64 - n as f64
+    }
 }

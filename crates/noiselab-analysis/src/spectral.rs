@@ -88,7 +88,11 @@ fn peak_frequency(e: &[f64], f0: f64) -> f64 {
     let offset = if i > 0 && i + 1 < smooth.len() {
         let (a, b, c) = (smooth[i - 1], smooth[i], smooth[i + 1]);
         let d = a - 2.0 * b + c;
-        if d < 0.0 { 0.5 * (a - c) / d } else { 0.0 }
+        if d < 0.0 {
+            0.5 * (a - c) / d
+        } else {
+            0.0
+        }
     } else {
         0.0
     };
@@ -104,10 +108,8 @@ pub(crate) fn spectrum(bins: &Bins, hann: &[f64], periodic: &[f64], fields: usiz
     let total: f64 = bins.bins.iter().map(|b| hann[b.index]).sum();
     let frac = |lo: f64, hi: f64| band(bins, hann, lo, hi) / total;
     let sqrt2 = core::f64::consts::SQRT_2;
-    let (weighted, sum) = bins
-        .bins
-        .iter()
-        .fold((0.0, 0.0), |(w, s), b| (w + hann[b.index] * b.f.ln(), s + hann[b.index]));
+    let (weighted, sum) =
+        bins.bins.iter().fold((0.0, 0.0), |(w, s), b| (w + hann[b.index] * b.f.ln(), s + hann[b.index]));
 
     // Best octave: slide a 24-bin window over the log energy.
     let per = PEAK_BINS_PER_OCTAVE as usize;
@@ -138,7 +140,11 @@ pub(crate) fn spectrum(bins: &Bins, hann: &[f64], periodic: &[f64], fields: usiz
                 frequency: (lo * hi).sqrt(),
                 psd: psd[i] / count[i] as f64,
                 energy_fraction: energy[i] / total,
-                anisotropy_excess_db: if rings.is_empty() { f64::NAN } else { 10.0 * a.log10() + 10.0 * (fields as f64).log10() },
+                anisotropy_excess_db: if rings.is_empty() {
+                    f64::NAN
+                } else {
+                    10.0 * a.log10() + 10.0 * (fields as f64).log10()
+                },
             }
         })
         .collect();

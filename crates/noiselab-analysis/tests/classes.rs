@@ -67,7 +67,10 @@ fn lattice_noises_light_the_cyclostationarity_detector_and_filtered_white_noise_
         assert!(c.cyclo_max_over_null > 5.0, "{name}: {}", c.cyclo_max_over_null);
         // The lattice's own frequency, found blind: 16 px or a harmonic.
         let period = c.lowest_line.unwrap().period_px;
-        assert!([16.0, 8.0, 16.0 / 2f64.sqrt(), 8.0 / 2f64.sqrt()].iter().any(|p| (period / p - 1.0).abs() < 0.03), "{name}: {period}");
+        assert!(
+            [16.0, 8.0, 16.0 / 2f64.sqrt(), 8.0 / 2f64.sqrt()].iter().any(|p| (period / p - 1.0).abs() < 0.03),
+            "{name}: {period}"
+        );
     }
     for seed in 1..=2 {
         let r = analyze(&[reference::gaussian_noise(1024, 1024, 3.8, seed)], &Options::default()).unwrap();

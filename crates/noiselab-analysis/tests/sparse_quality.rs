@@ -43,10 +43,18 @@ fn sparse_convolution_shows_no_lattice_and_improved_noise_does() {
             i.cyclostationarity.cyclo_max_over_null,
             jf.folded_variance_cv
         );
-        assert!(s.cyclostationarity.cyclo_max_over_null <= 1.3, "sparse cyclo {}", s.cyclostationarity.cyclo_max_over_null);
+        assert!(
+            s.cyclostationarity.cyclo_max_over_null <= 1.3,
+            "sparse cyclo {}",
+            s.cyclostationarity.cyclo_max_over_null
+        );
         assert!(sf.folded_variance_cv <= 0.03, "sparse folded CV {}", sf.folded_variance_cv);
         assert!((sl.node_value_score.unwrap() - 1.0).abs() < 0.1, "sparse node score {:?}", sl.node_value_score);
-        assert!(i.cyclostationarity.cyclo_max_over_null >= 8.0, "improved cyclo {}", i.cyclostationarity.cyclo_max_over_null);
+        assert!(
+            i.cyclostationarity.cyclo_max_over_null >= 8.0,
+            "improved cyclo {}",
+            i.cyclostationarity.cyclo_max_over_null
+        );
         assert!(jf.folded_variance_cv >= 0.08, "improved folded CV {}", jf.folded_variance_cv);
     }
 }

@@ -21,7 +21,8 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), String> {
         write_plots(dir, &report)?;
     }
     if args.json {
-        let text = serde_json::to_string_pretty(&report).map_err(|e| format!("cannot encode the report as JSON: {e}"))?;
+        let text =
+            serde_json::to_string_pretty(&report).map_err(|e| format!("cannot encode the report as JSON: {e}"))?;
         println!("{text}");
     } else {
         print!("{report}");

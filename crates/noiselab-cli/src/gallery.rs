@@ -20,7 +20,11 @@ struct Entry {
 }
 
 fn entry(title: &str, file: &str, args: &str) -> Entry {
-    Entry { title: title.into(), file: format!("{file}.png"), args: args.split_whitespace().map(String::from).collect() }
+    Entry {
+        title: title.into(),
+        file: format!("{file}.png"),
+        args: args.split_whitespace().map(String::from).collect(),
+    }
 }
 
 /// Everything the gallery shows, driven by the registries.
@@ -33,7 +37,11 @@ fn entries() -> Vec<Entry> {
         }
         for z in planes {
             let title = format!("{}, slice z = {z}", k.name);
-            list.push(entry(&title, &format!("{}-z{z}", k.name), &format!("{} --size 256x256 --scale 32 --slice {z}", k.name)));
+            list.push(entry(
+                &title,
+                &format!("{}-z{z}", k.name),
+                &format!("{} --size 256x256 --scale 32 --slice {z}", k.name),
+            ));
         }
         for (variant, what) in k.variants.iter().skip(1) {
             let slice = if k.default_dims >= 3 { " --slice 0.5" } else { "" };
@@ -44,14 +52,38 @@ fn entries() -> Vec<Entry> {
             ));
         }
     }
-    list.push(entry("sparse convolution, Gaussian reference (Frisvad & Wyvill Figure 1a)", "figure1a", "sparse --dims 2 --kernel gaussian --impulses 30 --size 512x512 --scale 32"));
-    list.push(entry("sparse convolution, cubic kernel (Figure 1b)", "figure1b", "sparse --dims 2 --impulses 30 --size 512x512 --scale 32"));
+    list.push(entry(
+        "sparse convolution, Gaussian reference (Frisvad & Wyvill Figure 1a)",
+        "figure1a",
+        "sparse --dims 2 --kernel gaussian --impulses 30 --size 512x512 --scale 32",
+    ));
+    list.push(entry(
+        "sparse convolution, cubic kernel (Figure 1b)",
+        "figure1b",
+        "sparse --dims 2 --impulses 30 --size 512x512 --scale 32",
+    ));
     for n in [10, 20, 30] {
-        list.push(entry(&format!("sparse convolution, {n} impulses per cell (Figure 7)"), &format!("sparse-n{n}"), &format!("sparse --impulses {n} --size 256x256 --scale 32 --slice 0.5")));
+        list.push(entry(
+            &format!("sparse convolution, {n} impulses per cell (Figure 7)"),
+            &format!("sparse-n{n}"),
+            &format!("sparse --impulses {n} --size 256x256 --scale 32 --slice 0.5"),
+        ));
     }
-    list.push(entry("improved noise tiled every 4 cells, shown 2×2: no seams", "tiled-improved", "improved --dims 2 --tile 4,4 --size 256x256 --scale 32"));
-    list.push(entry("cellular F2 − F1 tiled every 3 cells, shown 2×2", "tiled-worley", "worley --variant f2-f1 --tile 3,3 --size 192x192 --scale 32"));
-    list.push(entry("sparse convolution tiled every 4 cells, shown 2×2", "tiled-sparse", "sparse --dims 2 --tile 4,4 --size 256x256 --scale 32"));
+    list.push(entry(
+        "improved noise tiled every 4 cells, shown 2×2: no seams",
+        "tiled-improved",
+        "improved --dims 2 --tile 4,4 --size 256x256 --scale 32",
+    ));
+    list.push(entry(
+        "cellular F2 − F1 tiled every 3 cells, shown 2×2",
+        "tiled-worley",
+        "worley --variant f2-f1 --tile 3,3 --size 192x192 --scale 32",
+    ));
+    list.push(entry(
+        "sparse convolution tiled every 4 cells, shown 2×2",
+        "tiled-sparse",
+        "sparse --dims 2 --tile 4,4 --size 256x256 --scale 32",
+    ));
     for mode in noiselab::FractalMode::ALL {
         list.push(entry(
             &format!("{} of improved noise, octaves from the pixel size", mode.name()),
@@ -59,8 +91,16 @@ fn entries() -> Vec<Entry> {
             &format!("improved --octaves auto --fractal {} --size 256x256 --scale 64 --slice 0.5", mode.name()),
         ));
     }
-    list.push(entry("a seamless loop: 3D improved noise animated along z (animated PNG)", "loop-improved", "improved --frames 48 --loop --time-step 0.04 --size 192x192 --scale 48 --slice 0"));
-    list.push(entry("a seamless loop of sparse convolution noise", "loop-sparse", "sparse --frames 48 --loop --time-step 0.04 --size 192x192 --scale 48 --slice 0"));
+    list.push(entry(
+        "a seamless loop: 3D improved noise animated along z (animated PNG)",
+        "loop-improved",
+        "improved --frames 48 --loop --time-step 0.04 --size 192x192 --scale 48 --slice 0",
+    ));
+    list.push(entry(
+        "a seamless loop of sparse convolution noise",
+        "loop-sparse",
+        "sparse --frames 48 --loop --time-step 0.04 --size 192x192 --scale 48 --slice 0",
+    ));
     for r in crate::recipes::RECIPES {
         list.push(entry(&format!("{}: {}", r.name, r.summary), r.name, &format!("{} --size 256x256", r.name)));
     }
@@ -83,7 +123,11 @@ pub fn run(args: &GalleryArgs) -> Result<(), String> {
         bar.set_message(e.file.clone());
         let command = format!("noiselab render {} -o {}", e.args.join(" "), e.file);
         let path = dir.join(&e.file);
-        let argv = ["noiselab", "render"].into_iter().map(String::from).chain(e.args.iter().cloned()).chain(["--force".into(), "-o".into(), path.display().to_string()]);
+        let argv = ["noiselab", "render"].into_iter().map(String::from).chain(e.args.iter().cloned()).chain([
+            "--force".into(),
+            "-o".into(),
+            path.display().to_string(),
+        ]);
         let cli = Cli::try_parse_from(argv).map_err(|err| format!("gallery entry '{command}': {err}"))?;
         let Command::Render(render_args) = cli.command else { unreachable!("parsed a render command") };
         let t = Instant::now();

@@ -10,8 +10,8 @@ mod gallery;
 mod output;
 mod recipes;
 mod registry;
-mod report;
 mod render;
+mod report;
 mod sample;
 
 use clap::{Args, Parser, Subcommand};
@@ -258,8 +258,14 @@ fn command() -> clap::Command {
     use clap::CommandFactory;
     let kinds: Vec<String> = registry::KINDS.iter().map(|k| format!("  {:<12} {}", k.name, k.summary)).collect();
     let recipes: Vec<String> = recipes::RECIPES.iter().map(|r| format!("  {:<12} {}", r.name, r.summary)).collect();
-    let text = format!("Kinds:\n{}\n\nRecipes:\n{}\n\nSee `noiselab list` for dimensions and variants.", kinds.join("\n"), recipes.join("\n"));
-    Cli::command().mut_subcommand("render", |c| c.after_help(text.clone())).mut_subcommand("sample", |c| c.after_help(text.clone()))
+    let text = format!(
+        "Kinds:\n{}\n\nRecipes:\n{}\n\nSee `noiselab list` for dimensions and variants.",
+        kinds.join("\n"),
+        recipes.join("\n")
+    );
+    Cli::command()
+        .mut_subcommand("render", |c| c.after_help(text.clone()))
+        .mut_subcommand("sample", |c| c.after_help(text.clone()))
 }
 
 /// Parse the process's arguments and run the command; the exit code is 0 on
@@ -296,9 +302,9 @@ pub fn run() -> ExitCode {
             clap_complete::generate(shell, &mut command(), "noiselab", &mut std::io::stdout());
             Ok(())
         }
-        Command::Man => {
-            clap_mangen::Man::new(command()).render(&mut std::io::stdout()).map_err(|e| format!("cannot write the man page: {e}"))
-        }
+        Command::Man => clap_mangen::Man::new(command())
+            .render(&mut std::io::stdout())
+            .map_err(|e| format!("cannot write the man page: {e}")),
         Command::List => {
             list();
             Ok(())
@@ -320,7 +326,14 @@ pub fn run() -> ExitCode {
 fn list() {
     println!("kinds:");
     for k in registry::KINDS {
-        println!("{:<10} dims {}..={} (default {})  {}", k.name, k.dims.start(), k.dims.end(), k.default_dims, k.summary);
+        println!(
+            "{:<10} dims {}..={} (default {})  {}",
+            k.name,
+            k.dims.start(),
+            k.dims.end(),
+            k.default_dims,
+            k.summary
+        );
         for (i, (name, what)) in k.variants.iter().enumerate() {
             let default = if i == 0 { " (default)" } else { "" };
             println!("{:<12}--variant {name}{default}: {what}", "");
@@ -377,7 +390,9 @@ impl NoiseArgs {
             }
             (Some(render::Octaves::Count(n)), _) => n,
             (Some(render::Octaves::Auto), Some(f)) => noiselab::Fractal::<()>::octaves_for_footprint(f, lacunarity),
-            (Some(render::Octaves::Auto), None) => return Err("--octaves auto needs a pixel size: use it with render".into()),
+            (Some(render::Octaves::Auto), None) => {
+                return Err("--octaves auto needs a pixel size: use it with render".into())
+            }
         };
         let mode = self.fractal.unwrap_or_default();
         let field = registry::fractal(spec, &params, octaves, mode, lacunarity, gain)?;

@@ -55,7 +55,12 @@ impl Format {
 fn write_exr(w: &mut dyn Write, image: &Image) -> std::io::Result<()> {
     use exr::prelude::*;
     let channel = AnyChannel::new("Y", FlatSamples::F32(image.values.to_vec()));
-    let layer = Layer::new((image.width, image.height), LayerAttributes::named("noise"), Encoding::FAST_LOSSLESS, AnyChannels::sort(SmallVec::from_vec(vec![channel])));
+    let layer = Layer::new(
+        (image.width, image.height),
+        LayerAttributes::named("noise"),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(vec![channel])),
+    );
     let mut bytes = std::io::Cursor::new(Vec::new());
     exr::prelude::Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(std::io::Error::other)?;
     w.write_all(bytes.get_ref())
@@ -123,7 +128,13 @@ pub fn write_png_bands(
 
 /// An animated PNG (APNG) of grey frames mapped from `range`, 25 frames
 /// per second, looping forever.
-pub fn write_apng<'a>(w: &mut dyn Write, width: usize, height: usize, frames: impl ExactSizeIterator<Item = &'a [f32]>, range: (f64, f64)) -> std::io::Result<()> {
+pub fn write_apng<'a>(
+    w: &mut dyn Write,
+    width: usize,
+    height: usize,
+    frames: impl ExactSizeIterator<Item = &'a [f32]>,
+    range: (f64, f64),
+) -> std::io::Result<()> {
     let mut enc = png::Encoder::new(w, width as u32, height as u32);
     enc.set_color(png::ColorType::Grayscale);
     enc.set_depth(png::BitDepth::Eight);
@@ -159,11 +170,7 @@ fn write_png(w: &mut dyn Write, image: &Image, bits: u8) -> std::io::Result<()> 
     enc.set_color(png::ColorType::Grayscale);
     let data: Vec<u8> = if bits == 16 {
         enc.set_depth(png::BitDepth::Sixteen);
-        image
-            .values
-            .iter()
-            .flat_map(|&v| ((unit(v, image.range) * 65535.0).round() as u16).to_be_bytes())
-            .collect()
+        image.values.iter().flat_map(|&v| ((unit(v, image.range) * 65535.0).round() as u16).to_be_bytes()).collect()
     } else {
         enc.set_depth(png::BitDepth::Eight);
         image.values.iter().map(|&v| (unit(v, image.range) * 255.0).round() as u8).collect()

@@ -81,7 +81,9 @@ pub static RECIPES: &[RecipeSpec] = &[
     RecipeSpec {
         name: "bump",
         summary: "a sphere bump-mapped by the noise gradient (central differences), lit",
-        pixel: |n, u, v, _| match recipes::bumpy_sphere(u, v, |p, normal| recipes::bump_normal_numeric(n, p, normal, 0.25)) {
+        pixel: |n, u, v, _| match recipes::bumpy_sphere(u, v, |p, normal| {
+            recipes::bump_normal_numeric(n, p, normal, 0.25)
+        }) {
             Some(b) => (b, [0.9 * b as f32, 0.75 * b as f32, 0.55 * b as f32]),
             None => (0.0, [0.0; 3]),
         },
@@ -106,7 +108,8 @@ pub fn render(spec: &RecipeSpec, base: &Base, (width, height): (usize, usize), t
     let pixels: Vec<(f64, [f32; 3])> = (0..height)
         .into_par_iter()
         .flat_map_iter(|j| {
-            (0..width).map(move |i| (spec.pixel)(base, (i as f64 + 0.5) / width as f64, (j as f64 + 0.5) / height as f64, t))
+            (0..width)
+                .map(move |i| (spec.pixel)(base, (i as f64 + 0.5) / width as f64, (j as f64 + 0.5) / height as f64, t))
         })
         .collect();
     (pixels.iter().map(|p| p.0 as f32).collect(), pixels.iter().map(|p| p.1).collect())

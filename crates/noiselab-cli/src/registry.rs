@@ -2,7 +2,10 @@
 //! `list`, the help text) is driven from this table, so adding a kind here
 //! adds it everywhere.
 
-use noiselab::{CellOutput, Classic, DynNoise, Fast, Grid, GridError, Improved, ImprovedVariant, Kernel, Metric, Modified, ModifiedHash, ModifiedTexture, Simplex, SimplexN, Sparse, Value, Worley};
+use noiselab::{
+    CellOutput, Classic, DynNoise, Fast, Grid, GridError, Improved, ImprovedVariant, Kernel, Metric, Modified,
+    ModifiedHash, ModifiedTexture, Simplex, SimplexN, Sparse, Value, Worley,
+};
 use std::ops::RangeInclusive;
 
 /// What a user chose for a kind.
@@ -68,14 +71,38 @@ macro_rules! with_field {
     ($field:expr, $n:ident, $d:ident => $body:expr) => {
         #[allow(dead_code)] // `$d` is unused where the body infers the dimension
         match $field {
-            Field::D1($n) => { const $d: usize = 1; $body }
-            Field::D2($n) => { const $d: usize = 2; $body }
-            Field::D3($n) => { const $d: usize = 3; $body }
-            Field::D4($n) => { const $d: usize = 4; $body }
-            Field::D5($n) => { const $d: usize = 5; $body }
-            Field::D6($n) => { const $d: usize = 6; $body }
-            Field::D7($n) => { const $d: usize = 7; $body }
-            Field::D8($n) => { const $d: usize = 8; $body }
+            Field::D1($n) => {
+                const $d: usize = 1;
+                $body
+            }
+            Field::D2($n) => {
+                const $d: usize = 2;
+                $body
+            }
+            Field::D3($n) => {
+                const $d: usize = 3;
+                $body
+            }
+            Field::D4($n) => {
+                const $d: usize = 4;
+                $body
+            }
+            Field::D5($n) => {
+                const $d: usize = 5;
+                $body
+            }
+            Field::D6($n) => {
+                const $d: usize = 6;
+                $body
+            }
+            Field::D7($n) => {
+                const $d: usize = 7;
+                $body
+            }
+            Field::D8($n) => {
+                const $d: usize = 8;
+                $body
+            }
         }
     };
 }
@@ -106,7 +133,14 @@ impl Field {
     /// be 1), as the whole grid would compute them: each point is the
     /// grid's own `f32` point, so a band equals the same rows of a whole
     /// render bit for bit.
-    pub fn fill_rows(&self, origin: &[f64], step: &[f64], size: &[usize], rows: std::ops::Range<usize>, out: &mut [f32]) {
+    pub fn fill_rows(
+        &self,
+        origin: &[f64],
+        step: &[f64],
+        size: &[usize],
+        rows: std::ops::Range<usize>,
+        out: &mut [f32],
+    ) {
         with_field!(self, n, D => {
             let grid = Grid::<D>::new(array(origin), array(step), array(size));
             let width = size[0];
@@ -209,7 +243,9 @@ pub fn sparse_noise(p: &Params) -> Result<Sparse, String> {
         other => return Err(format!("--kernel must be one of {}, got {other}", SPARSE_KERNELS.join(", "))),
     };
     let n = p.impulses.unwrap_or(20);
-    let noise = Sparse::new(p.seed).with_impulses(n).map_err(|_| format!("--impulses must be 1..={}, got {n}", Sparse::MAX_IMPULSES))?;
+    let noise = Sparse::new(p.seed)
+        .with_impulses(n)
+        .map_err(|_| format!("--impulses must be 1..={}, got {n}", Sparse::MAX_IMPULSES))?;
     noise.with_kernel(kernel).with_period(p.period()).map_err(tile_error)
 }
 
@@ -227,7 +263,6 @@ fn value(p: &Params, _: &str) -> Result<Field, String> {
     let n = Value::new(p.seed).with_period(p.period()).map_err(tile_error)?;
     Ok(field!(n, p.dims, [1 => D1, 2 => D2, 3 => D3, 4 => D4]))
 }
-
 
 /// Every kind, in the order `list` shows them.
 pub static KINDS: &[KindSpec] = &[
@@ -362,7 +397,14 @@ pub static KINDS: &[KindSpec] = &[
 
 /// `params`' noise as a fractal sum: octave i is the kind built with seed
 /// `seed + i`, combined by `mode`.
-pub fn fractal(spec: &KindSpec, params: &Params, octaves: u32, mode: noiselab::FractalMode, lacunarity: f64, gain: f64) -> Result<Field, String> {
+pub fn fractal(
+    spec: &KindSpec,
+    params: &Params,
+    octaves: u32,
+    mode: noiselab::FractalMode,
+    lacunarity: f64,
+    gain: f64,
+) -> Result<Field, String> {
     // A tiled octave i keeps the whole tile as its period: tile·lacunarityⁱ cells.
     let tile = |i: u32| -> Result<Option<[u32; 4]>, String> {
         let Some(t) = params.tile else { return Ok(None) };

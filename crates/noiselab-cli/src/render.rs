@@ -3,8 +3,8 @@
 use crate::output::{Format, Image};
 use crate::registry::{self, Field};
 use crate::Method;
-use noiselab::{Grid, Sparse};
 use crate::RenderArgs;
+use noiselab::{Grid, Sparse};
 
 /// Most pixels one in-memory render may have (1 GiB of f32 values).
 const MAX_PIXELS: usize = 1 << 28;
@@ -24,17 +24,26 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     }
     let crate::Built { spec, field, dims, range, fractal } = args.noise.build(Some(1.0 / args.scale))?;
     let range = args.range.unwrap_or(range);
-    if args.ramp.is_some() && (!args.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) || args.frames.is_some()) {
+    if args.ramp.is_some()
+        && (!args.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) || args.frames.is_some())
+    {
         return Err("--ramp colours a still .png".into());
     }
     let format = Format::from_path(&args.output)?;
     let (width, height) = args.size;
-    let limit = if matches!(format, Format::Png | Format::Npy | Format::F32) && spec.name != "sparse" && args.frames.is_none() && args.ramp.is_none() {
+    let limit = if matches!(format, Format::Png | Format::Npy | Format::F32)
+        && spec.name != "sparse"
+        && args.frames.is_none()
+        && args.ramp.is_none()
+    {
         MAX_STREAM_PIXELS
     } else {
         MAX_PIXELS
     };
-    width.checked_mul(height).filter(|&n| n <= limit).ok_or_else(|| format!("--size {width}x{height} has more than {limit} pixels for this output"))?;
+    width
+        .checked_mul(height)
+        .filter(|&n| n <= limit)
+        .ok_or_else(|| format!("--size {width}x{height} has more than {limit} pixels for this output"))?;
     let slice = args.slice.clone().map(|s| s.0).unwrap_or_default();
     if slice.len() > dims.saturating_sub(2) {
         return Err(format!(
@@ -60,7 +69,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let pending = crate::output::Pending::create(&args.output, args.force)?;
 
     let sparse = spec.name == "sparse";
-    let streamable = matches!(format, Format::Png | Format::Npy | Format::F32) && dims >= 2 && !sparse && args.ramp.is_none();
+    let streamable =
+        matches!(format, Format::Png | Format::Npy | Format::F32) && dims >= 2 && !sparse && args.ramp.is_none();
     if streamable && width * height > STREAM_PIXELS {
         return stream(args, &field, dims, &slice, range, format, pending);
     }
@@ -109,7 +119,15 @@ pub fn parse_ramp(s: &str) -> Result<noiselab::recipes::Ramp, String> {
 /// A volume: `depth` slices along z, z spacing equal to the pixel spacing,
 /// as one (z, y, x) `.npy` or numbered slice PNGs. Every file is checked
 /// before any is written, and each appears atomically.
-fn volume(args: &RenderArgs, field: &Field, dims: usize, range: (f64, f64), slice: &[f64], depth: usize, format: Format) -> Result<(), String> {
+fn volume(
+    args: &RenderArgs,
+    field: &Field,
+    dims: usize,
+    range: (f64, f64),
+    slice: &[f64],
+    depth: usize,
+    format: Format,
+) -> Result<(), String> {
     if dims < 3 {
         return Err(format!("--depth renders volumes of 3D or 4D noise; this is {dims}D (use --dims 3)"));
     }
@@ -133,7 +151,8 @@ fn volume(args: &RenderArgs, field: &Field, dims: usize, range: (f64, f64), slic
         }
         _ => return Err("--depth writes a (z, y, x) .npy or numbered .png slices".into()),
     };
-    let pending = targets.iter().map(|t| crate::output::Pending::create(t, args.force)).collect::<Result<Vec<_>, _>>()?;
+    let pending =
+        targets.iter().map(|t| crate::output::Pending::create(t, args.force)).collect::<Result<Vec<_>, _>>()?;
     field.fill_grid(&origin, &steps, &size, &mut values).map_err(|e| e.to_string())?;
     if format == Format::Npy {
         let file = pending.into_iter().next().expect("one target");
@@ -156,7 +175,15 @@ fn volume(args: &RenderArgs, field: &Field, dims: usize, range: (f64, f64), slic
 /// 39 MB resident (50 s on 2 cores), where the whole image would be 4 GB of
 /// values. Bands equal the same rows of an in-memory render bit for bit. A
 /// progress bar shows on a terminal.
-fn stream(args: &RenderArgs, field: &Field, dims: usize, slice: &[f64], range: (f64, f64), format: Format, pending: crate::output::Pending) -> Result<(), String> {
+fn stream(
+    args: &RenderArgs,
+    field: &Field,
+    dims: usize,
+    slice: &[f64],
+    range: (f64, f64),
+    format: Format,
+    pending: crate::output::Pending,
+) -> Result<(), String> {
     let (width, height) = args.size;
     let step = 1.0 / args.scale;
     let mut origin = vec![args.origin.0, args.origin.1];
@@ -197,7 +224,15 @@ fn stream(args: &RenderArgs, field: &Field, dims: usize, slice: &[f64], range: (
 /// (frames, height, width) `.npy`. With `--loop` the noise is Perlin's
 /// blend loop over frames × step, so the last frame leads seamlessly back
 /// to the first.
-fn animate(args: &RenderArgs, field: Field, dims: usize, range: (f64, f64), slice: &[f64], frames: u32, format: Format) -> Result<(), String> {
+fn animate(
+    args: &RenderArgs,
+    field: Field,
+    dims: usize,
+    range: (f64, f64),
+    slice: &[f64],
+    frames: u32,
+    format: Format,
+) -> Result<(), String> {
     if dims < 3 {
         return Err(format!("--frames animates the last axis of 3D or 4D noise; this is {dims}D (use --dims 3)"));
     }
@@ -248,7 +283,10 @@ fn animate(args: &RenderArgs, field: Field, dims: usize, range: (f64, f64), slic
 fn render_recipe(recipe: &crate::recipes::RecipeSpec, args: &RenderArgs) -> Result<(), String> {
     let format = Format::from_path(&args.output)?;
     let (width, height) = args.size;
-    width.checked_mul(height).filter(|&n| n <= MAX_PIXELS).ok_or_else(|| format!("--size {width}x{height} has more than {MAX_PIXELS} pixels"))?;
+    width
+        .checked_mul(height)
+        .filter(|&n| n <= MAX_PIXELS)
+        .ok_or_else(|| format!("--size {width}x{height} has more than {MAX_PIXELS} pixels"))?;
     if args.method.is_some() {
         return Err("--method applies to sparse only".into());
     }

@@ -45,7 +45,12 @@ fn rows() -> Vec<Row> {
                     Some(v) if i > 0 => format!("{} {v}", spec.name),
                     _ => spec.name.to_string(),
                 };
-                rows.push(Row { label: format!("{name}, z = {z}"), kind: spec.name, variant: if i > 0 { variant } else { None }, z });
+                rows.push(Row {
+                    label: format!("{name}, z = {z}"),
+                    kind: spec.name,
+                    variant: if i > 0 { variant } else { None },
+                    z,
+                });
             }
         }
     }
@@ -98,7 +103,10 @@ fn measure(row: Row, size: usize, seeds: usize, pictures: &Path) -> Result<Measu
         "noiselab render {}{variant} --seed 1 --size {size}x{size} --scale {px} --slice {} -o {file}.npy",
         row.kind, row.z
     );
-    eprintln!("{:<28} {px:>3} px/cell  peak {:.4} cpp  ({:.2} s)", row.label, report.spectrum.peak_frequency, report.seconds);
+    eprintln!(
+        "{:<28} {px:>3} px/cell  peak {:.4} cpp  ({:.2} s)",
+        row.label, report.spectrum.peak_frequency, report.seconds
+    );
     Ok(Measured { label: row.label, file, command, px, report })
 }
 
@@ -109,10 +117,8 @@ pub fn run(args: &ReportArgs) -> Result<(), String> {
     std::fs::create_dir_all(&pictures).map_err(|e| format!("{}: {e}", pictures.display()))?;
     // Rows are independent: analyse them on every core (the analysis of one
     // image is single-threaded).
-    let mut measured = rows()
-        .into_par_iter()
-        .map(|row| measure(row, size, seeds, &pictures))
-        .collect::<Result<Vec<_>, String>>()?;
+    let mut measured =
+        rows().into_par_iter().map(|row| measure(row, size, seeds, &pictures)).collect::<Result<Vec<_>, String>>()?;
     // The isotropic, stationary reference at the same peak: σ = 1/(2π f).
     let sigma = 1.0 / (2.0 * core::f64::consts::PI * TARGET_PEAK);
     let fields: Vec<Samples> = (1..=seeds as u64).map(|s| reference::gaussian_noise(size, size, sigma, s)).collect();
@@ -270,18 +276,24 @@ fn page(rows: &[Measured], size: usize, seeds: usize) -> String {
         "| noise | px/cell | std | excess kurtosis | peak (cpp) | peak (cycles/cell) | octave around peak | below peak/4 | anisotropy (dB) | axis-line ratio | node value score | folded-variance CV | C2 jump (centres) | cyclo max/null | flags |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    let null_fv = rows.first().and_then(|r| r.report.lattice.as_ref()?.folded_variance.as_ref().map(|f| f.null_cv)).unwrap_or(f64::NAN);
+    let null_fv = rows
+        .first()
+        .and_then(|r| r.report.lattice.as_ref()?.folded_variance.as_ref().map(|f| f.null_cv))
+        .unwrap_or(f64::NAN);
     let _ = writeln!(
         s,
         "| *ideal (null)* | | | 0 | | | 0.471 | 0.061 | 0 ± {:.2} | 1 ± {:.3} | 1 | ≤ {null_fv:.3} | = centres | 1 | |",
-        rows.first().map_or(f64::NAN, |r| 10.0 / core::f64::consts::LN_10 * r.report.anisotropy.peak_octave_linear_null_std * seeds as f64),
+        rows.first().map_or(f64::NAN, |r| 10.0 / core::f64::consts::LN_10
+            * r.report.anisotropy.peak_octave_linear_null_std
+            * seeds as f64),
         rows.first().map_or(f64::NAN, |r| r.report.axis.null_sd),
     );
     for m in rows {
         let r = &m.report;
         let l = r.lattice.as_ref();
         let num = |v: Option<f64>, d: usize| v.map_or("–".to_string(), |v| format!("{v:.d$}"));
-        let c2 = l.map_or("–".to_string(), |l| format!("{} ({})", num(l.c2_jump_score, 3), num(l.c2_reference_score, 3)));
+        let c2 =
+            l.map_or("–".to_string(), |l| format!("{} ({})", num(l.c2_jump_score, 3), num(l.c2_reference_score, 3)));
         let _ = writeln!(
             s,
             "| {} | {} | {:.3} | {:.2} | {:.4} | {:.3} | {:.3} | {:.4} | {:+.2} | {:.2} | {} | {} | {} | {:.1} | {} |",
@@ -310,7 +322,10 @@ fn page(rows: &[Measured], size: usize, seeds: usize) -> String {
          *C2 jump* — second-derivative jump score > 1 and above twice its value at cell centres; *zero at nodes* — node value score < 0.01; \
          *cell-dependent variance* — folded-variance CV > 2× its iid null."
     );
-    let _ = writeln!(s, "\nThe reference's lattice columns use an arbitrary 16 px grid: it has none, so they show the null.\n");
+    let _ = writeln!(
+        s,
+        "\nThe reference's lattice columns use an arbitrary 16 px grid: it has none, so they show the null.\n"
+    );
     let _ = writeln!(s, "## Pictures\n");
     let _ = writeln!(s, "Each noise ({THUMB}×{THUMB} pixels of seed 1) beside the central {THUMB}×{THUMB} bins of its averaged spectrum (log scale, 60 dB).\n");
     let _ = writeln!(s, "| noise | picture | spectrum | reproduce |");

@@ -32,7 +32,8 @@ fn sample_values_round_trip_exactly() {
     let out = noiselab().args(["sample", "improved", "--variant", "2002"]).write_stdin(input).output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     let n = noiselab::Improved::new(0).with_variant(noiselab::ImprovedVariant::Original2002);
-    let want: Vec<f64> = [[0.5, -1.25, 2.75], [-300.125, 17.0, 0.001]].iter().map(|p| noiselab::Noise::get(&n, *p)).collect();
+    let want: Vec<f64> =
+        [[0.5, -1.25, 2.75], [-300.125, 17.0, 0.001]].iter().map(|p| noiselab::Noise::get(&n, *p)).collect();
     let got: Vec<f64> = text.lines().map(|l| l.parse().unwrap()).collect();
     assert_eq!(got, want);
 }
@@ -40,14 +41,22 @@ fn sample_values_round_trip_exactly() {
 #[test]
 fn sample_classic_f32_matches_the_1985_program() {
     // First row of classic1985_2d.csv (Perlin's verbatim float C code).
-    let out = noiselab().args(["sample", "classic", "--dims", "2", "--precision", "f32"]).write_stdin("-102.15499877929688,-41.161708831787109\n").output().unwrap();
+    let out = noiselab()
+        .args(["sample", "classic", "--dims", "2", "--precision", "f32"])
+        .write_stdin("-102.15499877929688,-41.161708831787109\n")
+        .output()
+        .unwrap();
     let got: f32 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
     assert_eq!(got as f64, -0.17061978578567505);
 }
 
 #[test]
 fn sample_f32_and_dims() {
-    let out = noiselab().args(["sample", "value", "--dims", "2", "--precision", "f32", "--seed", "4"]).write_stdin("0.5,0.5\n").output().unwrap();
+    let out = noiselab()
+        .args(["sample", "value", "--dims", "2", "--precision", "f32", "--seed", "4"])
+        .write_stdin("0.5,0.5\n")
+        .output()
+        .unwrap();
     let got: f32 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
     assert_eq!(got, noiselab::Noise::<2>::get_f32(&noiselab::Value::new(4), [0.5, 0.5]));
 }
@@ -175,7 +184,8 @@ fn analyze_reports_text_json_and_plots() {
     }
     // Two seeds, two formats, one report; the plots folder is created.
     let plots = dir.path().join("plots");
-    let out = noiselab().arg("analyze").args([&a, &b]).args(["--lattice", "16", "--plots"]).arg(&plots).output().unwrap();
+    let out =
+        noiselab().arg("analyze").args([&a, &b]).args(["--lattice", "16", "--plots"]).arg(&plots).output().unwrap();
     assert!(out.status.success(), "{}", stderr_of(&out));
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("2 fields") && text.contains("node value score") && text.contains("null"), "{text}");
@@ -244,8 +254,10 @@ fn report_renders_every_kind_and_the_checked_in_page_is_current() {
     }
     // The published page lists the same rows (regenerate it with the README's command when kinds change).
     let published = fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/quality.md")).unwrap();
-    assert_eq!(labels(&published).iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>(),
-        rows.iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>());
+    assert_eq!(
+        labels(&published).iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>(),
+        rows.iter().filter(|l| !l.starts_with("reference")).collect::<Vec<_>>()
+    );
 }
 
 /// Little-endian f32 payload of an `.npy` written by `render`.
@@ -277,7 +289,11 @@ fn sparse_renders_the_same_image_by_splatting_and_gathering() {
         assert!(worst < 1e-5, "{dims}D: splat and gather differ by {worst}");
     }
     // The Gaussian reference kernel, and sampling with options.
-    let out = noiselab().args(["sample", "sparse", "--kernel", "gaussian", "--impulses", "30"]).write_stdin("0.3 0.4 0.5\n").output().unwrap();
+    let out = noiselab()
+        .args(["sample", "sparse", "--kernel", "gaussian", "--impulses", "30"])
+        .write_stdin("0.3 0.4 0.5\n")
+        .output()
+        .unwrap();
     assert!(out.status.success(), "{}", stderr_of(&out));
     let v: f64 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
     let n = noiselab::Sparse::new(0).with_impulses(30).unwrap().with_kernel(noiselab::Kernel::gaussian());
@@ -314,7 +330,11 @@ fn tiled_renders_of_every_tileable_kind_have_no_seam() {
         let values = npy_values(&path);
         for j in 0..96 {
             for i in 0..128 {
-                assert_eq!(values[j * 128 + i].to_bits(), values[(j % 48) * 128 + i % 64].to_bits(), "{kind} ({i}, {j})");
+                assert_eq!(
+                    values[j * 128 + i].to_bits(),
+                    values[(j % 48) * 128 + i % 64].to_bits(),
+                    "{kind} ({i}, {j})"
+                );
             }
         }
         let out = noiselab().arg("analyze").arg(&path).args(["--period", "64", "--json"]).output().unwrap();
@@ -322,8 +342,14 @@ fn tiled_renders_of_every_tileable_kind_have_no_seam() {
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(json["periodicity"]["x"]["max_abs_diff"], 0.0, "{kind}");
     }
-    assert_one_line_error(&noiselab().args(["render", "simplex", "--tile", "4", "-o"]).arg(dir.path().join("s.png")).output().unwrap(), "not tileable");
-    assert_one_line_error(&noiselab().args(["render", "value", "--tile", "4,x", "-o"]).arg(dir.path().join("s.png")).output().unwrap(), "--tile");
+    assert_one_line_error(
+        &noiselab().args(["render", "simplex", "--tile", "4", "-o"]).arg(dir.path().join("s.png")).output().unwrap(),
+        "not tileable",
+    );
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--tile", "4,x", "-o"]).arg(dir.path().join("s.png")).output().unwrap(),
+        "--tile",
+    );
 }
 
 #[test]
@@ -336,15 +362,25 @@ fn cellular_and_fast_kinds_render() {
         &["fast"],
     ] {
         let path = dir.path().join("out.npy");
-        let out = noiselab().arg("render").args(args).args(["--size", "64x64", "--force", "-o"]).arg(&path).output().unwrap();
+        let out =
+            noiselab().arg("render").args(args).args(["--size", "64x64", "--force", "-o"]).arg(&path).output().unwrap();
         assert!(out.status.success(), "{args:?}: {}", stderr_of(&out));
         let values = npy_values(&path);
         assert!(values.iter().all(|v| v.is_finite()) && values.iter().any(|&v| v != values[0]), "{args:?}");
     }
     let bad = dir.path().join("bad.png");
-    assert_one_line_error(&noiselab().args(["render", "worley", "--jitter", "1.5", "-o"]).arg(&bad).output().unwrap(), "--jitter");
-    assert_one_line_error(&noiselab().args(["render", "worley", "--metric", "taxicab", "-o"]).arg(&bad).output().unwrap(), "--metric");
-    assert_one_line_error(&noiselab().args(["render", "value", "--jitter", "0.5", "-o"]).arg(&bad).output().unwrap(), "--jitter");
+    assert_one_line_error(
+        &noiselab().args(["render", "worley", "--jitter", "1.5", "-o"]).arg(&bad).output().unwrap(),
+        "--jitter",
+    );
+    assert_one_line_error(
+        &noiselab().args(["render", "worley", "--metric", "taxicab", "-o"]).arg(&bad).output().unwrap(),
+        "--metric",
+    );
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--jitter", "0.5", "-o"]).arg(&bad).output().unwrap(),
+        "--jitter",
+    );
 }
 
 #[test]
@@ -354,40 +390,89 @@ fn recipes_render_pictures_and_fields() {
         let png_path = dir.path().join(format!("{recipe}.png"));
         let out = noiselab().args(["render", recipe, "--size", "48x40", "-o"]).arg(&png_path).output().unwrap();
         assert!(out.status.success(), "{recipe}: {}", stderr_of(&out));
-        let reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
+        let reader =
+            png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
         let info = reader.info();
         assert_eq!((info.width, info.height, info.color_type), (48, 40, png::ColorType::Rgb), "{recipe}");
         let npy = dir.path().join(format!("{recipe}.npy"));
-        let out = noiselab().args(["render", recipe, "--size", "48x40", "--base", "value", "--slice", "0.25", "-o"]).arg(&npy).output().unwrap();
+        let out = noiselab()
+            .args(["render", recipe, "--size", "48x40", "--base", "value", "--slice", "0.25", "-o"])
+            .arg(&npy)
+            .output()
+            .unwrap();
         assert!(out.status.success(), "{recipe}: {}", stderr_of(&out));
         let values = npy_values(&npy);
         assert_eq!(values.len(), 48 * 40);
-        assert!(values.iter().all(|v| v.is_finite()) && values.iter().any(|&v| v != values[0]), "{recipe}: flat or non-finite field");
+        assert!(
+            values.iter().all(|v| v.is_finite()) && values.iter().any(|&v| v != values[0]),
+            "{recipe}: flat or non-finite field"
+        );
         // Deterministic: the same command gives the same field.
         let again = dir.path().join(format!("{recipe}-again.npy"));
-        noiselab().args(["render", recipe, "--size", "48x40", "--base", "value", "--slice", "0.25", "-o"]).arg(&again).assert().success();
+        noiselab()
+            .args(["render", recipe, "--size", "48x40", "--base", "value", "--slice", "0.25", "-o"])
+            .arg(&again)
+            .assert()
+            .success();
         assert_eq!(npy_values(&again), values, "{recipe}");
     }
     let bad = dir.path().join("bad.png");
-    assert_one_line_error(&noiselab().args(["render", "value", "--base", "improved", "-o"]).arg(&bad).output().unwrap(), "--base");
-    assert_one_line_error(&noiselab().args(["render", "marble", "--dims", "2", "-o"]).arg(&bad).output().unwrap(), "--dims");
-    assert_one_line_error(&noiselab().args(["render", "marble", "--base", "simplex-n", "--variant", "x", "-o"]).arg(&bad).output().unwrap(), "variant");
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--base", "improved", "-o"]).arg(&bad).output().unwrap(),
+        "--base",
+    );
+    assert_one_line_error(
+        &noiselab().args(["render", "marble", "--dims", "2", "-o"]).arg(&bad).output().unwrap(),
+        "--dims",
+    );
+    assert_one_line_error(
+        &noiselab()
+            .args(["render", "marble", "--base", "simplex-n", "--variant", "x", "-o"])
+            .arg(&bad)
+            .output()
+            .unwrap(),
+        "variant",
+    );
 }
 
 #[test]
 fn fractal_options_on_the_command_line() {
-    let out = noiselab().args(["sample", "improved", "--octaves", "4", "--fractal", "ridged"]).write_stdin("0.3 0.4 0.5\n").output().unwrap();
+    let out = noiselab()
+        .args(["sample", "improved", "--octaves", "4", "--fractal", "ridged"])
+        .write_stdin("0.3 0.4 0.5\n")
+        .output()
+        .unwrap();
     assert!(out.status.success(), "{}", stderr_of(&out));
     let v: f64 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
     let f = noiselab::Fractal::new(|o| noiselab::Improved::new(o.seed), 0, 4, noiselab::FractalMode::Ridged).unwrap();
     assert_eq!(v, noiselab::Noise::get(&f, [0.3, 0.4, 0.5]));
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("auto.npy");
-    noiselab().args(["render", "value", "--dims", "2", "--octaves", "auto", "--scale", "64", "--size", "32x32", "-o"]).arg(&path).assert().success();
-    assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "auto"]).write_stdin("0 0 0\n").output().unwrap(), "auto");
-    assert_one_line_error(&noiselab().args(["sample", "value", "--fractal", "ridged"]).write_stdin("0 0 0\n").output().unwrap(), "--octaves");
-    assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "31"]).write_stdin("0 0 0\n").output().unwrap(), "--octaves");
-    assert_one_line_error(&noiselab().args(["sample", "value", "--octaves", "3", "--lacunarity", "1"]).write_stdin("0 0 0\n").output().unwrap(), "lacunarity");
+    noiselab()
+        .args(["render", "value", "--dims", "2", "--octaves", "auto", "--scale", "64", "--size", "32x32", "-o"])
+        .arg(&path)
+        .assert()
+        .success();
+    assert_one_line_error(
+        &noiselab().args(["sample", "value", "--octaves", "auto"]).write_stdin("0 0 0\n").output().unwrap(),
+        "auto",
+    );
+    assert_one_line_error(
+        &noiselab().args(["sample", "value", "--fractal", "ridged"]).write_stdin("0 0 0\n").output().unwrap(),
+        "--octaves",
+    );
+    assert_one_line_error(
+        &noiselab().args(["sample", "value", "--octaves", "31"]).write_stdin("0 0 0\n").output().unwrap(),
+        "--octaves",
+    );
+    assert_one_line_error(
+        &noiselab()
+            .args(["sample", "value", "--octaves", "3", "--lacunarity", "1"])
+            .write_stdin("0 0 0\n")
+            .output()
+            .unwrap(),
+        "lacunarity",
+    );
 }
 
 #[test]
@@ -396,7 +481,27 @@ fn gallery_renders_everything_with_its_command() {
     let out = noiselab().args(["gallery", "--out"]).arg(dir.path()).output().unwrap();
     assert!(out.status.success(), "{}", stderr_of(&out));
     let html = fs::read_to_string(dir.path().join("index.html")).unwrap();
-    for name in ["classic", "improved", "simplex", "value", "modified", "sparse", "worley", "fast", "marble", "wood", "clouds", "flame", "planet", "stucco", "bump", "hypertexture", "figure1a", "tiled-improved", "fractal-ridged"] {
+    for name in [
+        "classic",
+        "improved",
+        "simplex",
+        "value",
+        "modified",
+        "sparse",
+        "worley",
+        "fast",
+        "marble",
+        "wood",
+        "clouds",
+        "flame",
+        "planet",
+        "stucco",
+        "bump",
+        "hypertexture",
+        "figure1a",
+        "tiled-improved",
+        "fractal-ridged",
+    ] {
         assert!(html.contains(name), "{name} missing from the gallery");
     }
     let images: Vec<&str> = html.split("<img src=\"").skip(1).map(|s| s.split('"').next().unwrap()).collect();
@@ -418,7 +523,11 @@ fn gallery_renders_everything_with_its_command() {
 fn animations_are_animated_pngs_and_loop_seamlessly() {
     let dir = tempfile::tempdir().unwrap();
     let apng = dir.path().join("loop.png");
-    noiselab().args(["render", "improved", "--frames", "8", "--loop", "--size", "32x24", "-o"]).arg(&apng).assert().success();
+    noiselab()
+        .args(["render", "improved", "--frames", "8", "--loop", "--size", "32x24", "-o"])
+        .arg(&apng)
+        .assert()
+        .success();
     let reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&apng).unwrap())).read_info().unwrap();
     assert_eq!(reader.info().animation_control.map(|a| (a.num_frames, a.num_plays)), Some((8, 0)));
     // The (frames, height, width) field: with --loop the last frame is one
@@ -440,10 +549,19 @@ fn animations_are_animated_pngs_and_loop_seamlessly() {
     let (looped, unlooped) = (wrap_ratio(true), wrap_ratio(false));
     assert!(looped < 5.0 && unlooped > 20.0 * looped, "wrap/step: looped {looped}, unlooped {unlooped}");
     let bad = dir.path().join("bad.png");
-    assert_one_line_error(&noiselab().args(["render", "value", "--dims", "2", "--frames", "4", "-o"]).arg(&bad).output().unwrap(), "--frames");
-    assert_one_line_error(&noiselab().args(["render", "value", "--frames", "1", "-o"]).arg(&bad).output().unwrap(), "--frames");
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--dims", "2", "--frames", "4", "-o"]).arg(&bad).output().unwrap(),
+        "--frames",
+    );
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--frames", "1", "-o"]).arg(&bad).output().unwrap(),
+        "--frames",
+    );
     assert_one_line_error(&noiselab().args(["render", "value", "--loop", "-o"]).arg(&bad).output().unwrap(), "--loop");
-    assert_one_line_error(&noiselab().args(["render", "value", "--frames", "3", "-o"]).arg(dir.path().join("a.exr")).output().unwrap(), "--frames");
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--frames", "3", "-o"]).arg(dir.path().join("a.exr")).output().unwrap(),
+        "--frames",
+    );
 }
 
 #[test]
@@ -476,8 +594,13 @@ fn streamed_renders_equal_in_memory_ones() {
     assert_eq!(b.len(), 2048 * 2049);
     assert_eq!(&b[..a.len()], &a[..]);
     let png_path = dir.path().join("large.png");
-    noiselab().args(["render", "value", "--size", "2048x2049", "--scale", "100", "--bits", "16", "-o"]).arg(&png_path).assert().success();
-    let mut reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
+    noiselab()
+        .args(["render", "value", "--size", "2048x2049", "--scale", "100", "--bits", "16", "-o"])
+        .arg(&png_path)
+        .assert()
+        .success();
+    let mut reader =
+        png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size().unwrap()];
     reader.next_frame(&mut buf).unwrap();
     assert_eq!((reader.info().width, reader.info().height), (2048, 2049));
@@ -487,7 +610,11 @@ fn streamed_renders_equal_in_memory_ones() {
 fn ramps_and_ranges_map_values() {
     let dir = tempfile::tempdir().unwrap();
     let png_path = dir.path().join("ramp.png");
-    noiselab().args(["render", "simplex", "--dims", "2", "--ramp", "flame", "--range", "-0.8,0.8", "--size", "20x10", "-o"]).arg(&png_path).assert().success();
+    noiselab()
+        .args(["render", "simplex", "--dims", "2", "--ramp", "flame", "--range", "-0.8,0.8", "--size", "20x10", "-o"])
+        .arg(&png_path)
+        .assert()
+        .success();
     let reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png_path).unwrap())).read_info().unwrap();
     assert_eq!(reader.info().color_type, png::ColorType::Rgb);
     // --range changes the grey mapping, not the values.
@@ -496,15 +623,25 @@ fn ramps_and_ranges_map_values() {
     noiselab().args(["render", "value", "--size", "16x16", "--range", "-0.5,0.5", "-o"]).arg(&b).assert().success();
     assert_ne!(fs::read(&a).unwrap(), fs::read(&b).unwrap());
     let bad = dir.path().join("bad.npy");
-    assert_one_line_error(&noiselab().args(["render", "value", "--ramp", "wood", "-o"]).arg(&bad).output().unwrap(), "--ramp");
-    assert_one_line_error(&noiselab().args(["render", "value", "--range", "2,1", "-o"]).arg(&bad).output().unwrap(), "--range");
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--ramp", "wood", "-o"]).arg(&bad).output().unwrap(),
+        "--ramp",
+    );
+    assert_one_line_error(
+        &noiselab().args(["render", "value", "--range", "2,1", "-o"]).arg(&bad).output().unwrap(),
+        "--range",
+    );
 }
 
 #[test]
 fn volumes_render_as_npy_and_numbered_slices() {
     let dir = tempfile::tempdir().unwrap();
     let npy = dir.path().join("vol.npy");
-    noiselab().args(["render", "improved", "--depth", "5", "--size", "12x8", "--scale", "4", "-o"]).arg(&npy).assert().success();
+    noiselab()
+        .args(["render", "improved", "--depth", "5", "--size", "12x8", "--scale", "4", "-o"])
+        .arg(&npy)
+        .assert()
+        .success();
     let bytes = fs::read(&npy).unwrap();
     assert!(String::from_utf8_lossy(&bytes[..80]).contains("(5, 8, 12)"));
     let v = npy_values(&npy);
@@ -520,8 +657,22 @@ fn volumes_render_as_npy_and_numbered_slices() {
         assert!(dir.path().join(format!("slice-{k:03}.png")).exists());
     }
     // Nothing is overwritten without --force, and nothing half-written.
-    assert_one_line_error(&noiselab().args(["render", "improved", "--depth", "3", "--size", "12x8", "-o"]).arg(&png_path).output().unwrap(), "exists");
-    assert_one_line_error(&noiselab().args(["render", "value", "--dims", "2", "--depth", "3", "-o"]).arg(dir.path().join("x.npy")).output().unwrap(), "--depth");
+    assert_one_line_error(
+        &noiselab()
+            .args(["render", "improved", "--depth", "3", "--size", "12x8", "-o"])
+            .arg(&png_path)
+            .output()
+            .unwrap(),
+        "exists",
+    );
+    assert_one_line_error(
+        &noiselab()
+            .args(["render", "value", "--dims", "2", "--depth", "3", "-o"])
+            .arg(dir.path().join("x.npy"))
+            .output()
+            .unwrap(),
+        "--depth",
+    );
 }
 
 #[test]
@@ -531,7 +682,11 @@ fn sample_covers_recipes() {
     let v: f64 = String::from_utf8(out.stdout).unwrap().trim().parse().unwrap();
     // marble's frame: p = (3u, 3v, t) over improved noise.
     assert_eq!(v, noiselab::recipes::marble(&noiselab::Improved::new(0), [0.1 * 3.0, 0.2 * 3.0, 0.3]));
-    let out = noiselab().args(["sample", "hypertexture", "--base", "value"]).write_stdin("0.5,0.5,0\n0.01,0.01,0\n").output().unwrap();
+    let out = noiselab()
+        .args(["sample", "hypertexture", "--base", "value"])
+        .write_stdin("0.5,0.5,0\n0.01,0.01,0\n")
+        .output()
+        .unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     let values: Vec<f64> = text.lines().map(|l| l.parse().unwrap()).collect();
     assert!(values[0] > 0.9 && values[1] < 0.1, "{values:?}");
@@ -559,7 +714,18 @@ fn large_renders_stream_in_bounded_memory() {
     // stays far below that.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("big.png");
-    let peak = peak_rss_kb(&["render", "value", "--dims", "2", "--size", "8192x4096", "--bits", "16", "-o", out.to_str().unwrap()]);
+    let peak = peak_rss_kb(&[
+        "render",
+        "value",
+        "--dims",
+        "2",
+        "--size",
+        "8192x4096",
+        "--bits",
+        "16",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     eprintln!("8192x4096 16-bit PNG: peak RSS {} MiB", peak / 1024);
     assert!(peak < 64 * 1024, "peak RSS {peak} KiB");
 }

@@ -18,7 +18,13 @@ fn entries() -> Vec<(String, Vec<String>)> {
     let mut kind = String::new();
     for line in text.lines() {
         if line.starts_with("kinds:") || line.starts_with("recipes") || line.starts_with("fractal") {
-            section = if line.starts_with("kinds") { "kinds" } else if line.starts_with("recipes") { "recipes" } else { "" };
+            section = if line.starts_with("kinds") {
+                "kinds"
+            } else if line.starts_with("recipes") {
+                "recipes"
+            } else {
+                ""
+            };
             continue;
         }
         let words: Vec<&str> = line.split_whitespace().collect();
@@ -38,7 +44,10 @@ fn entries() -> Vec<(String, Vec<String>)> {
         }
     }
     for mode in ["fbm", "turbulence", "ridged", "billow", "hybrid"] {
-        out.push((format!("fractal-{mode}"), ["value", "--octaves", "4", "--fractal", mode].map(String::from).to_vec()));
+        out.push((
+            format!("fractal-{mode}"),
+            ["value", "--octaves", "4", "--fractal", mode].map(String::from).to_vec(),
+        ));
     }
     out
 }
@@ -69,7 +78,9 @@ fn every_registry_entry_matches_its_golden_image() {
             continue;
         }
         match fs::read(&reference) {
-            Ok(want) => assert!(want == fresh, "{name}: values changed (render {args:?} differs from tests/golden/{name}.npy)"),
+            Ok(want) => {
+                assert!(want == fresh, "{name}: values changed (render {args:?} differs from tests/golden/{name}.npy)")
+            }
             Err(_) => missing.push(name),
         }
     }

@@ -60,7 +60,9 @@ impl fmt::Display for GridError {
                 write!(f, "output buffer holds {got} values but the grid has {expected} points")
             }
             GridError::TooLarge => write!(f, "grid has more points than fit in memory"),
-            GridError::PointsMismatch { points, out } => write!(f, "output buffer holds {out} values for {points} points"),
+            GridError::PointsMismatch { points, out } => {
+                write!(f, "output buffer holds {out} values for {points} points")
+            }
         }
     }
 }
@@ -342,7 +344,9 @@ impl<const D: usize> Axes<D> {
     /// octave, and an octave on integers went through its coordinates one
     /// by one (3 % of a 32² tile of fBm-6, perf).
     pub(crate) fn all_integers(&self) -> bool {
-        self.coords[..self.ends[D - 1]].iter().fold(true, |all, &c| all & (c.is_finite() & (c == crate::lanes::math::floor32(c))))
+        self.coords[..self.ends[D - 1]]
+            .iter()
+            .fold(true, |all, &c| all & (c.is_finite() & (c == crate::lanes::math::floor32(c))))
     }
 
     /// Points of the grid: every axis's size multiplied.
@@ -420,7 +424,11 @@ impl<const D: usize> Span<'_, D> {
             return (0, 0);
         }
         let first = self.start % nx;
-        if first + len <= nx { (first, first + len) } else { (0, nx) }
+        if first + len <= nx {
+            (first, first + len)
+        } else {
+            (0, nx)
+        }
     }
 
     /// The (partial) grid rows that `len` points from the span's start
@@ -513,7 +521,11 @@ impl<N: Noise<D>, B: BatchLanes, const D: usize> ChunkSampler<B, D> for Pointwis
 
 /// [`fill_pointwise`] through a [`ChunkSampler`].
 #[inline(always)]
-pub(crate) fn fill_chunks<S: ChunkSampler<B, D>, B: BatchLanes, const D: usize>(noise: &mut S, span: Span<'_, D>, out: &mut [f32]) {
+pub(crate) fn fill_chunks<S: ChunkSampler<B, D>, B: BatchLanes, const D: usize>(
+    noise: &mut S,
+    span: Span<'_, D>,
+    out: &mut [f32],
+) {
     let w = B::WIDTH;
     let xs = span.axes.axis(0);
     for RowPiece { idx, first: i0, offset: o0, len: n } in span.rows(out.len()) {
@@ -735,7 +747,11 @@ pub(crate) fn fill_span_best<N: Noise<D>, const D: usize>(noise: &N, span: Span<
     noise.dispatch_span(best_level(), span, out)
 }
 
-pub(crate) fn fill_points<N: Noise<D>, const D: usize>(noise: &N, points: &[[f32; D]], out: &mut [f32]) -> Result<(), GridError> {
+pub(crate) fn fill_points<N: Noise<D>, const D: usize>(
+    noise: &N,
+    points: &[[f32; D]],
+    out: &mut [f32],
+) -> Result<(), GridError> {
     fill_points_at(best_level(), noise, points, out)
 }
 
@@ -1062,7 +1078,9 @@ mod tests {
         for grid in &grids {
             let want: Vec<f32> = (0..2).flat_map(|d| (0..grid.size[d]).map(move |i| grid.coord(d, i) as f32)).collect();
             let mut got = vec![0f32; want.len()];
-            let same = |got: &[f32]| got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()));
+            let same = |got: &[f32]| {
+                got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()))
+            };
             for level in SimdLevel::available() {
                 got.fill(0.0);
                 grid.write_axes_at(level, 0..2, &mut got);

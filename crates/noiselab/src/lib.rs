@@ -63,22 +63,24 @@ pub mod grid;
 pub mod hash;
 pub mod kinds;
 pub mod lanes;
-pub mod recipes;
 mod noise;
+pub mod recipes;
 mod scratch;
 
 pub use compose::{ComposeError, Fractal, FractalMode, Looped, Octave, Warp};
 pub use grid::{Accuracy, Axes, Grid, GridError, SimdLevel, Span, Stores, STREAM_MIN_VALUES};
-pub use kinds::{Period, PeriodError};
 pub use kinds::classic::Classic;
 pub use kinds::fast::Fast;
 pub use kinds::improved::{Improved, ImprovedVariant};
 pub use kinds::modified::{Modified, ModifiedHash, ModifiedTexture};
 pub use kinds::simplex::Simplex;
 pub use kinds::simplex_n::{SimplexCost, SimplexN};
-pub use kinds::sparse::{Kernel, KernelError, Normalisation, Profile, Sparse, SparseError, SparseTurbulence, SplatError, Values};
+pub use kinds::sparse::{
+    Kernel, KernelError, Normalisation, Profile, Sparse, SparseError, SparseTurbulence, SplatError, Values,
+};
 pub use kinds::value::Value;
 pub use kinds::worley::{CellOutput, Metric, Nearest, Worley, WorleyError};
+pub use kinds::{Period, PeriodError};
 pub use noise::{sample_x16, sample_x8, DynNoise, Noise, NoiseGradient};
 
 /// The README's code blocks, compiled and run as doctests.

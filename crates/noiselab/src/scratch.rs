@@ -152,7 +152,8 @@ pub(crate) fn give_back(buffer: Vec<f32>) {
             }
         } else if let Some(smallest) = pool.iter_mut().min_by_key(|b| b.capacity()) {
             // Full: keep the larger, within the bound.
-            if smallest.capacity() < buffer.capacity() && held - smallest.capacity() + buffer.capacity() <= KEPT_VALUES {
+            if smallest.capacity() < buffer.capacity() && held - smallest.capacity() + buffer.capacity() <= KEPT_VALUES
+            {
                 *smallest = buffer;
             }
         }

@@ -255,7 +255,12 @@ impl Octave {
 impl<N> Fractal<N> {
     /// `octaves` octaves made by `make` (seeds `seed + i`), lacunarity 2,
     /// gain ½.
-    pub fn new(make: impl Fn(Octave) -> N, seed: u32, octaves: u32, mode: FractalMode) -> Result<Fractal<N>, ComposeError> {
+    pub fn new(
+        make: impl Fn(Octave) -> N,
+        seed: u32,
+        octaves: u32,
+        mode: FractalMode,
+    ) -> Result<Fractal<N>, ComposeError> {
         Fractal::with(make, seed, octaves, mode, 2.0, 0.5)
     }
 
@@ -286,7 +291,12 @@ impl<N> Fractal<N> {
 
     /// From octaves already made (octave i read at lacunarityⁱ·p), e.g.
     /// noises chosen at run time.
-    pub fn from_octaves(octaves: Vec<N>, mode: FractalMode, lacunarity: f64, gain: f64) -> Result<Fractal<N>, ComposeError> {
+    pub fn from_octaves(
+        octaves: Vec<N>,
+        mode: FractalMode,
+        lacunarity: f64,
+        gain: f64,
+    ) -> Result<Fractal<N>, ComposeError> {
         if !(1..=MAX_OCTAVES as usize).contains(&octaves.len()) {
             return Err(ComposeError::Octaves(octaves.len() as u32));
         }
@@ -514,7 +524,8 @@ impl<B: BatchLanes> Filled<'_, B> {
         // SAFETY: `new` checked count · stride ≤ buffers.len(), and i <
         // count, at + WIDTH ≤ stride, so the lanes end within octave i's
         // stride, at most (i + 1) · stride ≤ buffers.len().
-        let lanes = unsafe { core::slice::from_raw_parts(self.buffers.as_ptr().add(i * self.stride + self.at), B::WIDTH) };
+        let lanes =
+            unsafe { core::slice::from_raw_parts(self.buffers.as_ptr().add(i * self.stride + self.at), B::WIDTH) };
         B::from_slice(lanes)
     }
 
@@ -622,7 +633,11 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         // at 1/32 zeroed its sixth octave's 4 KiB every call). The first
         // octave always is, so the combine has an octave to loop over.
         let mut summed = count;
-        while self.mode == FractalMode::Fbm && summed > 1 && on_integers[summed - 1] && (self.steps.amplitude[summed - 1] as f32).is_finite() {
+        while self.mode == FractalMode::Fbm
+            && summed > 1
+            && on_integers[summed - 1]
+            && (self.steps.amplitude[summed - 1] as f32).is_finite()
+        {
             summed -= 1;
         }
         // Where every coordinate is finite, point evaluation's NaN guard
@@ -630,7 +645,8 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
         let finite = span.axes.all_finite();
         // The whole grid's size, not the span's: threads cut it into smaller ones.
         let stores = if span.axes.points() >= COMBINE_STREAM_MIN_VALUES { Stores::Streamed } else { span.stores };
-        let fills = OctaveFills { scaled: &scaled[..count], on_integers: &on_integers[..count], summed, finite, stores };
+        let fills =
+            OctaveFills { scaled: &scaled[..count], on_integers: &on_integers[..count], summed, finite, stores };
         match strip_width(nx, w) {
             // Whole rows of every coordinate, finite: strip by strip.
             Some(width) if D >= 2 && finite && span.start.is_multiple_of(nx) && out.len().is_multiple_of(nx) => {
@@ -644,7 +660,13 @@ impl<N: Noise<D>, const D: usize> Noise<D> for Fractal<N> {
                     }
                     let strip = Span { axes: &narrow[0], start: first_row * width, ..span };
                     let strip_fills = OctaveFills { scaled: &narrow[..count], ..fills };
-                    self.fill_blocks::<B, D>(&strip_fills, strip, rows * width, Some(Strip { first, width, stride: nx }), out);
+                    self.fill_blocks::<B, D>(
+                        &strip_fills,
+                        strip,
+                        rows * width,
+                        Some(Strip { first, width, stride: nx }),
+                        out,
+                    );
                     for axes in &mut narrow[..count] {
                         core::mem::replace(axes, Axes::EMPTY).recycle();
                     }
@@ -697,8 +719,14 @@ impl<N> Fractal<N> {
     /// block then combined into `out`: in order, or, for a `strip`, row by
     /// row into its columns (`span` then runs over the strip's own axes).
     #[inline(always)]
-    fn fill_blocks<B: BatchLanes, const D: usize>(&self, fills: &OctaveFills<'_, D>, span: Span<'_, D>, len: usize, strip: Option<Strip>, out: &mut [f32])
-    where
+    fn fill_blocks<B: BatchLanes, const D: usize>(
+        &self,
+        fills: &OctaveFills<'_, D>,
+        span: Span<'_, D>,
+        len: usize,
+        strip: Option<Strip>,
+        out: &mut [f32],
+    ) where
         N: Noise<D>,
     {
         let nx = span.axes.size(0).max(1);
@@ -731,7 +759,11 @@ impl<N> Fractal<N> {
                     // kind's grid path is then compiled once per kind and
                     // level, not again in every fractal over it (one call per
                     // block).
-                    noise.dispatch_span(B::LEVEL, Span { axes: &fills.scaled[i], start, accuracy: span.accuracy, stores: Stores::Cached }, octave);
+                    noise.dispatch_span(
+                        B::LEVEL,
+                        Span { axes: &fills.scaled[i], start, accuracy: span.accuracy, stores: Stores::Cached },
+                        octave,
+                    );
                 }
             }
             match strip {
@@ -740,8 +772,16 @@ impl<N> Fractal<N> {
                 Some(Strip { first, width, stride: row_stride }) => {
                     for r in 0..n / width {
                         let at = (done / width + r) * row_stride + first;
-                        let octaves = OctaveBuffers { values: &buffers[r * width..], stride, count: summed, total: count };
-                        combine_finite(B::LEVEL, &self.steps, self.mode, octaves, &mut out[at..at + width], fills.stores);
+                        let octaves =
+                            OctaveBuffers { values: &buffers[r * width..], stride, count: summed, total: count };
+                        combine_finite(
+                            B::LEVEL,
+                            &self.steps,
+                            self.mode,
+                            octaves,
+                            &mut out[at..at + width],
+                            fills.stores,
+                        );
                     }
                 }
                 None => {
@@ -767,11 +807,18 @@ impl<N> Fractal<N> {
     /// coordinate is not finite (as point evaluation). Where every
     /// coordinate is finite, [`combine_finite`] needs no positions.
     #[inline(always)]
-    fn combine_with_positions<B: BatchLanes, const D: usize>(&self, part: Span<'_, D>, filled: Filled<'_, B>, out: &mut [f32]) {
+    fn combine_with_positions<B: BatchLanes, const D: usize>(
+        &self,
+        part: Span<'_, D>,
+        filled: Filled<'_, B>,
+        out: &mut [f32],
+    ) {
         // The mode dispatched once per block.
         match self.mode {
             FractalMode::Fbm => self.combine_with_positions_as::<B, D>(FractalMode::Fbm, part, filled, out),
-            FractalMode::Turbulence => self.combine_with_positions_as::<B, D>(FractalMode::Turbulence, part, filled, out),
+            FractalMode::Turbulence => {
+                self.combine_with_positions_as::<B, D>(FractalMode::Turbulence, part, filled, out)
+            }
             FractalMode::Ridged => self.combine_with_positions_as::<B, D>(FractalMode::Ridged, part, filled, out),
             FractalMode::Billow => self.combine_with_positions_as::<B, D>(FractalMode::Billow, part, filled, out),
             FractalMode::Hybrid => self.combine_with_positions_as::<B, D>(FractalMode::Hybrid, part, filled, out),
@@ -780,7 +827,13 @@ impl<N> Fractal<N> {
 
     /// [`Fractal::combine_with_positions`] in `mode`.
     #[inline(always)]
-    fn combine_with_positions_as<B: BatchLanes, const D: usize>(&self, mode: FractalMode, part: Span<'_, D>, filled: Filled<'_, B>, out: &mut [f32]) {
+    fn combine_with_positions_as<B: BatchLanes, const D: usize>(
+        &self,
+        mode: FractalMode,
+        part: Span<'_, D>,
+        filled: Filled<'_, B>,
+        out: &mut [f32],
+    ) {
         let w = B::WIDTH;
         let xs = part.axes.axis(0);
         for RowPiece { idx, first, offset, len: n } in part.rows(out.len()) {
@@ -793,7 +846,8 @@ impl<N> Fractal<N> {
                 let at = offset + k;
                 p[0] = if n - k >= w { B::from_slice(&xs[first + k..]) } else { pad(&xs[first + k..first + n]) };
                 // NaN where any coordinate is not finite, as point evaluation.
-                let v = crate::kinds::finite_or_nan(p, self.steps.combine(mode, filled.count, &Filled { at, ..filled }));
+                let v =
+                    crate::kinds::finite_or_nan(p, self.steps.combine(mode, filled.count, &Filled { at, ..filled }));
                 let count = (n - k).min(w);
                 store_prefix(v, &mut out[at..at + count]);
                 k += w;
@@ -819,7 +873,14 @@ struct OctaveBuffers<'a> {
 /// compiled again for every noise type, dimension and level (with its
 /// loops unrolled per octave count, the test suite's build then ran past
 /// 40 minutes).
-fn combine_finite(level: SimdLevel, steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+fn combine_finite(
+    level: SimdLevel,
+    steps: &Steps,
+    mode: FractalMode,
+    octaves: OctaveBuffers<'_>,
+    out: &mut [f32],
+    stores: Stores,
+) {
     // SAFETY: `runnable` never exceeds the features the CPU reports, and
     // the baseline clone needs none.
     unsafe {
@@ -839,17 +900,35 @@ mod combine_clones {
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi")]
-    pub(super) unsafe fn avx512(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+    pub(super) unsafe fn avx512(
+        steps: &Steps,
+        mode: FractalMode,
+        octaves: OctaveBuffers<'_>,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         steps.combine_finite::<crate::lanes::avx512::X16>(mode, octaves, out, stores)
     }
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+    pub(super) unsafe fn avx2(
+        steps: &Steps,
+        mode: FractalMode,
+        octaves: OctaveBuffers<'_>,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         steps.combine_finite::<crate::lanes::avx2::X8>(mode, octaves, out, stores)
     }
 
-    pub(super) unsafe fn baseline(steps: &Steps, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+    pub(super) unsafe fn baseline(
+        steps: &Steps,
+        mode: FractalMode,
+        octaves: OctaveBuffers<'_>,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         steps.combine_finite::<crate::lanes::F32x8>(mode, octaves, out, stores)
     }
 }
@@ -893,7 +972,13 @@ impl Steps {
     /// positions are needed): the octave loop over the filled octaves in
     /// output order, the mode dispatched once per block.
     #[inline(always)]
-    fn combine_finite<B: BatchLanes>(&self, mode: FractalMode, octaves: OctaveBuffers<'_>, out: &mut [f32], stores: Stores) {
+    fn combine_finite<B: BatchLanes>(
+        &self,
+        mode: FractalMode,
+        octaves: OctaveBuffers<'_>,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         let amplitudes = self.lane_amplitudes::<B>(octaves.count);
         let filled = self.filled(octaves, &amplitudes);
         match mode {
@@ -909,7 +994,13 @@ impl Steps {
     /// in registers, chunk by chunk, stored as `stores` says; more, octave
     /// by octave through a run of sums, stored plainly.
     #[inline(always)]
-    fn combine_finite_as<B: BatchLanes>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32], stores: Stores) {
+    fn combine_finite_as<B: BatchLanes>(
+        &self,
+        mode: FractalMode,
+        filled: Filled<'_, B>,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         match filled.count {
             1 => self.combine_by_chunk::<B, 1>(mode, filled, out, stores),
             2 => self.combine_by_chunk::<B, 2>(mode, filled, out, stores),
@@ -957,7 +1048,10 @@ impl Steps {
                 store_prefix(self.finish_chunk(mode, sum, Filled { at: start + k * w, ..filled }), out);
             }
             if !tail.is_empty() {
-                store_prefix(self.finish_chunk(mode, &sums[chunks - 1], Filled { at: start + len / w * w, ..filled }), tail);
+                store_prefix(
+                    self.finish_chunk(mode, &sums[chunks - 1], Filled { at: start + len / w * w, ..filled }),
+                    tail,
+                );
             }
             start += len;
         }
@@ -970,7 +1064,13 @@ impl Steps {
     /// chunk, against 48 through a run of sums in memory). The same octaves
     /// in the same order: the same bits.
     #[inline(always)]
-    fn combine_by_chunk<B: BatchLanes, const COUNT: usize>(&self, mode: FractalMode, filled: Filled<'_, B>, out: &mut [f32], stores: Stores) {
+    fn combine_by_chunk<B: BatchLanes, const COUNT: usize>(
+        &self,
+        mode: FractalMode,
+        filled: Filled<'_, B>,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         let w = B::WIDTH;
         // Loops, not `array::from_fn`, whose closures LLVM may leave out of
         // line, outside the instruction-set clone.

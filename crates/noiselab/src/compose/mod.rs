@@ -49,12 +49,17 @@ impl core::fmt::Display for ComposeError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             ComposeError::LoopLength(t) => write!(f, "loop length must be finite and positive, got {t}"),
-            ComposeError::Warp(v) => write!(f, "warp amplitude and frequency must be finite (frequency positive), got {v}"),
+            ComposeError::Warp(v) => {
+                write!(f, "warp amplitude and frequency must be finite (frequency positive), got {v}")
+            }
             ComposeError::Iterations(n) => write!(f, "warp iterations must be 1..=16, got {n}"),
             ComposeError::Octaves(n) => write!(f, "octaves must be 1..=30, got {n}"),
             ComposeError::Lacunarity(l) => write!(f, "lacunarity must be finite and above 1, got {l}"),
             ComposeError::Gain(g) => write!(f, "gain must be finite and positive, got {g}"),
-            ComposeError::OctavePeriod(p) => write!(f, "a tiled octave needs a whole number of cells per period, got {p} (use an integer lacunarity)"),
+            ComposeError::OctavePeriod(p) => write!(
+                f,
+                "a tiled octave needs a whole number of cells per period, got {p} (use an integer lacunarity)"
+            ),
         }
     }
 }
@@ -112,7 +117,13 @@ impl<N, W> Warp<N, W> {
     /// `noise` warped by the field `make(seed + k)` for each axis k, moved
     /// by up to about `amplitude` (in `noise`'s units), the field read at
     /// `frequency · p`.
-    pub fn new(noise: N, make: impl Fn(u32) -> W, seed: u32, amplitude: f64, frequency: f64) -> Result<Warp<N, W>, ComposeError> {
+    pub fn new(
+        noise: N,
+        make: impl Fn(u32) -> W,
+        seed: u32,
+        amplitude: f64,
+        frequency: f64,
+    ) -> Result<Warp<N, W>, ComposeError> {
         if !amplitude.is_finite() {
             return Err(ComposeError::Warp(amplitude));
         }

@@ -159,7 +159,6 @@ impl Classic {
     pub fn seed(&self) -> u32 {
         self.seed
     }
-
 }
 
 /// 3t² − 2t³ as `t·t·(3 − 2t)`.
@@ -190,7 +189,11 @@ impl Classic {
     /// The corners' gradients (see `corners`) from each lane's `p[bx]`
     /// and `p[bx + 1]`.
     #[inline(always)]
-    fn gradients_after<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cell: [L::Int; D]) -> [Corner<L>; MAX_CORNERS] {
+    fn gradients_after<L: Lanes, const D: usize>(
+        &self,
+        first: [L::Int; 2],
+        cell: [L::Int; D],
+    ) -> [Corner<L>; MAX_CORNERS] {
         let t = &self.tables;
         let tables: [&([f32; LEN], [f64; LEN]); 3] = match D {
             1 => [&t.g1, &t.g1, &t.g1],

@@ -145,7 +145,7 @@ impl Fast {
 fn sin_cos_turns<L: Lanes>(x: L) -> (L, L) {
     let half = L::cst(0.5);
     let r = x - (x + half).floor(); // [−½, ½)
-    // Fold by quarter turns: r = q/4 + s with q ∈ {−2..2}, |s| ≤ 1/8.
+                                    // Fold by quarter turns: r = q/4 + s with q ∈ {−2..2}, |s| ≤ 1/8.
     let q = (r * L::cst(4.0) + half).floor();
     let s = r - q * L::cst(0.25);
     let theta = s * L::cst(core::f64::consts::TAU);
@@ -155,11 +155,14 @@ fn sin_cos_turns<L: Lanes>(x: L) -> (L, L) {
         * (L::cst(1.0)
             + t2 * (L::cst(-1.0 / 6.0)
                 + t2 * (L::cst(1.0 / 120.0)
-                    + t2 * (L::cst(-1.0 / 5040.0) + t2 * (L::cst(1.0 / 362_880.0) + t2 * L::cst(-1.0 / 39_916_800.0))))));
+                    + t2 * (L::cst(-1.0 / 5040.0)
+                        + t2 * (L::cst(1.0 / 362_880.0) + t2 * L::cst(-1.0 / 39_916_800.0))))));
     let cos = L::cst(1.0)
         + t2 * (L::cst(-0.5)
             + t2 * (L::cst(1.0 / 24.0)
-                + t2 * (L::cst(-1.0 / 720.0) + t2 * (L::cst(1.0 / 40_320.0) + t2 * (L::cst(-1.0 / 3_628_800.0) + t2 * L::cst(1.0 / 479_001_600.0))))));
+                + t2 * (L::cst(-1.0 / 720.0)
+                    + t2 * (L::cst(1.0 / 40_320.0)
+                        + t2 * (L::cst(-1.0 / 3_628_800.0) + t2 * L::cst(1.0 / 479_001_600.0))))));
     // Rotate by q quarter turns: q = ±2 → (−sin, −cos); ±1 → (±cos, ∓sin).
     let qi = q.to_int_wrapping().and_c(3);
     let (one, two, three) = (qi.eq(L::Int::splat(1)), qi.eq(L::Int::splat(2)), qi.eq(L::Int::splat(3)));

@@ -97,7 +97,12 @@ impl Improved {
     /// Written level by level with constant counts, not as a loop, so that
     /// LLVM unrolls it and keeps the hashes in registers.
     #[inline(always)]
-    fn chain<L: Lanes, const D: usize>(&self, first: [L::Int; 2], cells: [L::Int; D], all: bool) -> [L::Int; MAX_CORNERS] {
+    fn chain<L: Lanes, const D: usize>(
+        &self,
+        first: [L::Int; 2],
+        cells: [L::Int; D],
+        all: bool,
+    ) -> [L::Int; MAX_CORNERS] {
         let mut h = [L::Int::splat(0); MAX_CORNERS];
         h[..2].copy_from_slice(&first);
         // The link of axis 1; in 1D and 2D, followed by the zero coordinate
@@ -202,7 +207,10 @@ impl Improved {
             Corner { i: [h, zero.i[1]], f: zero.f }
         } else {
             let [cx, cy, cz] = self.gradient_tables();
-            Corner { i: zero.i, f: Self::coefficients::<L, D>([L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h)]) }
+            Corner {
+                i: zero.i,
+                f: Self::coefficients::<L, D>([L::lookup16(cx, h), L::lookup16(cy, h), L::lookup16(cz, h)]),
+            }
         }
     }
 
@@ -240,7 +248,6 @@ impl Improved {
             self.period.wrap(axis, cell.add_c(bit)).and_c(255)
         }
     }
-
 }
 
 /// Perlin's 3D `grad(hash, x, y, z)` as coefficients: for hash h (low four
@@ -262,10 +269,9 @@ const fn gradient_table(variant: ImprovedVariant) -> [[f32; 16]; 3] {
                     2
                 },
             ),
-            ImprovedVariant::Original2002 => (
-                if h < 8 || h == 12 || h == 13 { 0 } else { 1 },
-                if h < 4 || h == 12 || h == 13 { 1 } else { 2 },
-            ),
+            ImprovedVariant::Original2002 => {
+                (if h < 8 || h == 12 || h == 13 { 0 } else { 1 }, if h < 4 || h == 12 || h == 13 { 1 } else { 2 })
+            }
         };
         table[u][h] = if h & 1 == 0 { 1.0 } else { -1.0 };
         table[v][h] = if h & 2 == 0 { 1.0 } else { -1.0 };
@@ -275,7 +281,8 @@ const fn gradient_table(variant: ImprovedVariant) -> [[f32; 16]; 3] {
 }
 
 /// [`gradient_table`] for each variant.
-const GRADIENTS: [[Table16; 3]; 2] = [tables(gradient_table(ImprovedVariant::Current)), tables(gradient_table(ImprovedVariant::Original2002))];
+const GRADIENTS: [[Table16; 3]; 2] =
+    [tables(gradient_table(ImprovedVariant::Current)), tables(gradient_table(ImprovedVariant::Original2002))];
 
 /// Each axis's coefficients as a lookup table.
 const fn tables([x, y, z]: [[f32; 16]; 3]) -> [Table16; 3] {
@@ -320,7 +327,8 @@ impl<const D: usize> Lattice<D> for Improved {
     #[inline(always)]
     fn point_row<B: BatchLanes>(&self, first: i32, rest: [i32; D]) -> Corner<B> {
         let cells = lattice::row_points::<B, D>(first, rest);
-        let lower = if self.period.is_none() { self.perm.run::<B>(first) } else { self.perm.at(self.index(cells[0], 0, 0)) };
+        let lower =
+            if self.period.is_none() { self.perm.run::<B>(first) } else { self.perm.at(self.index(cells[0], 0, 0)) };
         self.record::<B, D>(self.chain::<B, D>([lower, lower], cells, false)[0])
     }
 

@@ -31,7 +31,9 @@
 //!
 //! [`Noise::get_f32`]: crate::Noise::get_f32
 
-use super::{corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, EntriesMut, MAX_CORNERS};
+use super::{
+    corner_bit, interpolate, interpolate_axis, interpolate_gradient, Columns, Entries, EntriesMut, MAX_CORNERS,
+};
 use crate::grid::{fill_pointwise, store_prefix, Accuracy, RowPiece, Span, Stores};
 use crate::lanes::{BatchLanes, IntLanes, Lanes, StreamedRun};
 use alloc::vec::Vec;
@@ -346,8 +348,7 @@ pub(crate) fn sample_gradient<K: Lattice<D>, L: Lanes, const D: usize>(kind: &K,
         v[c] = kind.eval(&kind.bind(corners[c], off), off[0]);
         g[c] = kind.corner_gradient(corners[c]);
     }
-    let (value, grad) =
-        interpolate_gradient(v, g, fades(kind, f), fade_derivs(kind, f));
+    let (value, grad) = interpolate_gradient(v, g, fades(kind, f), fade_derivs(kind, f));
     let mut scaled = grad;
     for d in 0..D {
         scaled[d] = finish(kind, grad[d]);
@@ -575,7 +576,10 @@ impl<B: BatchLanes> RunCorners<B> for BatchRecords<'_> {
     #[inline(always)]
     fn held<const D: usize>(&self, cell: usize, fields: Fields) -> Held<B> {
         let span = self.per_point * 16;
-        Held::new::<D>(&BatchRow { points: &self.table[cell * span..(cell + 2) * span], per_point: self.per_point, row: self.row }, fields)
+        Held::new::<D>(
+            &BatchRow { points: &self.table[cell * span..(cell + 2) * span], per_point: self.per_point, row: self.row },
+            fields,
+        )
     }
 }
 
@@ -691,7 +695,19 @@ crate::scratch::per_thread!(KEPT_TABLES: Tables);
 impl crate::scratch::KeptVectors for Tables {
     fn held_bytes(&self) -> usize {
         use crate::scratch::bytes_of;
-        let floats = [&self.records, &self.bound, &self.bound_upper, &self.coef, &self.blends, &self.frac0, &self.fade0, &self.frac1, &self.fade1, &self.band_coef, &self.staged];
+        let floats = [
+            &self.records,
+            &self.bound,
+            &self.bound_upper,
+            &self.coef,
+            &self.blends,
+            &self.frac0,
+            &self.fade0,
+            &self.frac1,
+            &self.fade1,
+            &self.band_coef,
+            &self.staged,
+        ];
         floats.into_iter().map(bytes_of).sum::<usize>()
             + bytes_of(&self.cell0)
             + bytes_of(&self.cell1)
@@ -841,7 +857,10 @@ impl<const D: usize> PointRows<D> {
     const PER_PLANE: usize = 1 << (D - 1);
 
     fn new(kept: &mut Vec<f32>, fields: Fields, points: usize) -> Self {
-        PointRows { records: Columns::kept_in(kept, Self::PER_PLANE * fields.total(), points), key: [None; MAX_CORNERS / 2] }
+        PointRows {
+            records: Columns::kept_in(kept, Self::PER_PLANE * fields.total(), points),
+            key: [None; MAX_CORNERS / 2],
+        }
     }
 
     /// For each row of the plane of `cell` (row r: upper on axis d + 1 when
@@ -1027,14 +1046,30 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         if bands {
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
             let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
-            fill_bands::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), &mut point_rows, (min_cell, points, false), (axis1, kept));
+            fill_bands::<K, B, D>(
+                kind,
+                span,
+                (out, &mut staging),
+                (chunks, chunk_axis),
+                &mut point_rows,
+                (min_cell, points, false),
+                (axis1, kept),
+            );
         } else {
             // Axis 1 by row, for the batches' lanes.
             let ny = span.axes.size(1);
             split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w + w);
             let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
             let kept = (kept_bound, kept_coef);
-            fill_row_batches::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), (&mut point_rows, kept), (min_cell, points), axis1);
+            fill_row_batches::<K, B, D>(
+                kind,
+                span,
+                (out, &mut staging),
+                (chunks, chunk_axis),
+                (&mut point_rows, kept),
+                (min_cell, points),
+                axis1,
+            );
         }
         point_rows.records.keep_in(kept_records);
         return;
@@ -1071,14 +1106,26 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
     let ask_bands = fine && near && span.accuracy == Accuracy::Fast && D >= 2 && !(held && points <= w);
     if ask_bands && tall_cells::<K, B, D>(kind, &span, (cell1, frac1, fade1), narrow_band_rows::<B>(nx)) {
         fine_chunks::<B>(axis0, span_of, true, chunk_axis);
-        chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk { start: k * w, end: (k * w + w).min(cols), cell: a.first }));
+        chunks.extend(chunk_axis.iter().enumerate().map(|(k, a)| Chunk {
+            start: k * w,
+            end: (k * w + w).min(cols),
+            cell: a.first,
+        }));
         let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
         // Back to the kept vector, which the bands take: held here, it
         // left them an empty one, so every call allocated their table
         // and freed this one (a malloc and a free per fBm tile, perf).
         bound.keep_in(kept_bound);
         let kept = [kept_bound, kept_bound_upper, kept_coef, band_coef];
-        fill_bands::<K, B, D>(kind, span, (out, &mut staging), (chunks, chunk_axis), &mut point_rows, (min_cell, points, true), (axis1, kept));
+        fill_bands::<K, B, D>(
+            kind,
+            span,
+            (out, &mut staging),
+            (chunks, chunk_axis),
+            &mut point_rows,
+            (min_cell, points, true),
+            (axis1, kept),
+        );
         point_rows.records.keep_in(kept_records);
         return;
     }
@@ -1092,9 +1139,25 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
         split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w + w);
         let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
         if points <= w {
-            fill_held_fine_rows::<K, B, D, false>(kind, span, out, chunk_axis, &mut point_rows, (min_cell, points), axis1);
+            fill_held_fine_rows::<K, B, D, false>(
+                kind,
+                span,
+                out,
+                chunk_axis,
+                &mut point_rows,
+                (min_cell, points),
+                axis1,
+            );
         } else {
-            fill_held_fine_rows::<K, B, D, true>(kind, span, out, chunk_axis, &mut point_rows, (min_cell, points), axis1);
+            fill_held_fine_rows::<K, B, D, true>(
+                kind,
+                span,
+                out,
+                chunk_axis,
+                &mut point_rows,
+                (min_cell, points),
+                axis1,
+            );
         }
         point_rows.records.keep_in(kept_records);
         bound.keep_in(kept_bound);
@@ -1107,7 +1170,15 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
             split_axis::<K, B, D>(kind, span.axes.axis(1), (cell1, frac1, fade1), ny.div_ceil(w) * w);
         }
         let axis1 = (&cell1[..], &frac1[..], &fade1[..]);
-        fill_fine_rows::<K, B, D>(kind, span, out, chunk_axis, (&mut point_rows, &mut bound), (min_cell, points, near), axis1);
+        fill_fine_rows::<K, B, D>(
+            kind,
+            span,
+            out,
+            chunk_axis,
+            (&mut point_rows, &mut bound),
+            (min_cell, points, near),
+            axis1,
+        );
         point_rows.records.keep_in(kept_records);
         bound.keep_in(kept_bound);
         return;
@@ -1211,7 +1282,14 @@ fn fill_span_with<K: Lattice<D> + crate::Noise<D>, B: BatchLanes, const D: usize
                 let to = staging.target(&mut out[o0..]);
                 for (ch, axis) in chunks.iter().zip(chunk_axis) {
                     let (x, fade) = axis.lanes::<B>();
-                    emit(poly_at::<K, B, D>(x, fade, &OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() }), &mut to[ch.start..]);
+                    emit(
+                        poly_at::<K, B, D>(
+                            x,
+                            fade,
+                            &OnePolynomial { from: records.field(0, ch.cell), stride: records.stride() },
+                        ),
+                        &mut to[ch.start..],
+                    );
                 }
                 staging.flush::<B>(&mut out[o0..o0 + n]);
             }
@@ -1404,7 +1482,14 @@ fn fill_row_batches<K: Lattice<D>, B: BatchLanes, const D: usize>(
             let at = (row + (y - y0)) * nx;
             let batch = RowBatch { rows, frac: &frac1[y..], fade: &fade1[y..], f };
             let to = &mut staging.target(&mut out[at..])[..rows * nx];
-            write_batch::<K, B, D>(kind, &batch, (chunks, chunk_axis, held), (&point_rows.records, &slot_of, points), (&mut bound, terms), (to, nx));
+            write_batch::<K, B, D>(
+                kind,
+                &batch,
+                (chunks, chunk_axis, held),
+                (&point_rows.records, &slot_of, points),
+                (&mut bound, terms),
+                (to, nx),
+            );
             staging.flush::<B>(&mut out[at..at + rows * nx]);
             y += rows;
         }
@@ -1426,7 +1511,13 @@ fn chunks_aligned(chunks: &[Chunk], w: usize) -> bool {
 /// [`fill_fine_rows`], [`fill_held_fine_rows`] and [`fill_bands`] share.
 /// In 1D (no axis 1, `cell1` unread) a run of one row.
 #[inline(always)]
-fn axis1_runs<'a, K: Lattice<D>, const D: usize>(kind: &'a K, span: &'a Span<'a, D>, cell1: &'a [i32], len: usize, w: usize) -> AxisRuns<'a, K, D> {
+fn axis1_runs<'a, K: Lattice<D>, const D: usize>(
+    kind: &'a K,
+    span: &'a Span<'a, D>,
+    cell1: &'a [i32],
+    len: usize,
+    w: usize,
+) -> AxisRuns<'a, K, D> {
     let first_row = span.start / span.axes.size(0);
     AxisRuns { kind, span, cell1, w, first_row, next: first_row, end_row: first_row + len / span.axes.size(0) }
 }
@@ -1549,7 +1640,9 @@ fn write_batch<K: Lattice<D>, B: BatchLanes, const D: usize>(
         }
         for ((ch, axis), at) in chunks.iter().zip(chunk_axis).zip(terms.chunks_exact_mut(corners * B::WIDTH)) {
             let held = records.held::<D>(ch.cell, K::BOUND);
-            for (t, to) in x_terms::<K, B, D>(kind, axis.lanes::<B>().0, &held).iter().zip(at.chunks_exact_mut(B::WIDTH)) {
+            for (t, to) in
+                x_terms::<K, B, D>(kind, axis.lanes::<B>().0, &held).iter().zip(at.chunks_exact_mut(B::WIDTH))
+            {
                 t.store(to);
             }
         }
@@ -1620,7 +1713,12 @@ fn write_held_rows<K: Lattice<D>, B: BatchLanes, const D: usize, const N: usize,
 /// positions and fades padded to whole lanes) and each lane's cell,
 /// counted from the chunk's first (`relative`) or from the smallest.
 #[inline(always)]
-fn fine_chunks<B: BatchLanes>((cell0, frac0, fade0): AxisRows<'_>, span_of: &[ChunkCells], relative: bool, chunk_axis: &mut Vec<ChunkAxis>) {
+fn fine_chunks<B: BatchLanes>(
+    (cell0, frac0, fade0): AxisRows<'_>,
+    span_of: &[ChunkCells],
+    relative: bool,
+    chunk_axis: &mut Vec<ChunkAxis>,
+) {
     let w = B::WIDTH;
     for (s, cells) in (0..cell0.len()).step_by(w).zip(span_of) {
         let first = if relative { cells.first } else { 0 };
@@ -1981,7 +2079,11 @@ const ONE_CELL_ROWS: usize = 64;
 /// Returns false, having written nothing, where the span is not such a
 /// grid.
 #[inline(always)]
-fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span: &Span<'_, D>, out: &mut [f32]) -> bool {
+fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    span: &Span<'_, D>,
+    out: &mut [f32],
+) -> bool {
     let w = B::WIDTH;
     if D != 2 || K::FLAT || span.stores != Stores::Cached {
         return false;
@@ -1990,7 +2092,12 @@ fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span:
     let (nx, ny) = (xs.len(), ys.len());
     let chunks = nx / w;
     let fast = span.accuracy == Accuracy::Fast;
-    if !(1..=HELD_BAND_CHUNKS).contains(&chunks) || nx != chunks * w || !(1..=ONE_CELL_ROWS).contains(&ny) || span.start != 0 || out.len() != nx * ny {
+    if !(1..=HELD_BAND_CHUNKS).contains(&chunks)
+        || nx != chunks * w
+        || !(1..=ONE_CELL_ROWS).contains(&ny)
+        || span.start != 0
+        || out.len() != nx * ny
+    {
         return false;
     }
     // Most grids this does not take leave here, before any split (split
@@ -2083,7 +2190,11 @@ fn fill_small_tile<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, span:
 /// with enough rows a cell), `Some(false)` for its exact held rows, `None`
 /// for its row polynomials (cells holding whole chunks but few rows).
 #[inline(always)]
-fn fast_small_tile<B: BatchLanes>(axis0: &[ChunkAxis], (cells, cells1): (&[i32], &[i32]), points: usize) -> Option<bool> {
+fn fast_small_tile<B: BatchLanes>(
+    axis0: &[ChunkAxis],
+    (cells, cells1): (&[i32], &[i32]),
+    points: usize,
+) -> Option<bool> {
     let w = B::WIDTH;
     let long_runs = cells.len() >= run_count(cells) * w;
     let min_rows = if long_runs { BAND_ROWS } else { narrow_band_rows::<B>(cells.len()) };
@@ -2335,7 +2446,10 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
     let ncell = points - 1;
     let room = point_rows.records.stride();
     // The plane's rows' records bound at v = 0 and at v = 1.
-    let mut bound = [Columns::kept_in(kept_lower, rows * K::BOUND.total(), room), Columns::kept_in(kept_upper, rows * K::BOUND.total(), room)];
+    let mut bound = [
+        Columns::kept_in(kept_lower, rows * K::BOUND.total(), room),
+        Columns::kept_in(kept_upper, rows * K::BOUND.total(), room),
+    ];
     // Each cell's four half-blends, four coefficients each.
     let mut halves = Columns::kept_in(kept_halves, 16, room);
     // Each chunk's band coefficients, chunk by chunk.
@@ -2374,7 +2488,8 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
             bind_plane::<K, B, D>(kind, (&point_rows.records, &slot_of), fs, table, points);
         }
         let pair_weights = half_blend_weights::<K, B, D>(kind, f);
-        let views = [bound[0].entries(rows * K::BOUND.total(), 0, room), bound[1].entries(rows * K::BOUND.total(), 0, room)];
+        let views =
+            [bound[0].entries(rows * K::BOUND.total(), 0, room), bound[1].entries(rows * K::BOUND.total(), 0, room)];
         // Checked once for every cell (each store through `Columns::store`
         // checked its own bounds: 18 instructions a store).
         let mut to = halves.entries_mut(16, 0, ncell.div_ceil(w) * w);
@@ -2396,7 +2511,10 @@ fn fill_bands<K: Lattice<D>, B: BatchLanes, const D: usize>(
         for ((ch, axis), to) in chunks.iter().zip(chunk_axis).zip(coef.chunks_exact_mut(4 * w)) {
             let half = if narrow {
                 let lane = B::load_int(&axis.lane);
-                half_blends::<K, B, D>(axis.lanes(), &PerLane::<B, true> { entries: &narrow_view, first: axis.first, lane: [lane, lane] })
+                half_blends::<K, B, D>(
+                    axis.lanes(),
+                    &PerLane::<B, true> { entries: &narrow_view, first: axis.first, lane: [lane, lane] },
+                )
             } else {
                 half_blends::<K, B, D>(axis.lanes(), &OneCell::new(&halves, ch.cell, 16))
             };
@@ -2492,7 +2610,12 @@ const PREFETCH_MIN_VALUES: usize = 1 << 20;
 /// below are requested as it is stored (past the band's last rows, the
 /// next band's).
 #[inline(always)]
-fn write_aligned_band<B: BatchLanes, const PREFETCH: bool>(band_out: &mut [f32], nx: usize, (frac, fade): (&[f32], &[f32]), (coef, whole): (&[f32], usize)) {
+fn write_aligned_band<B: BatchLanes, const PREFETCH: bool>(
+    band_out: &mut [f32],
+    nx: usize,
+    (frac, fade): (&[f32], &[f32]),
+    (coef, whole): (&[f32], usize),
+) {
     let w = B::WIDTH;
     let (coef_whole, coef_end) = coef.split_at(whole * 4 * w);
     let pairs = whole / 2;
@@ -2580,7 +2703,11 @@ fn write_held_band<B: BatchLanes, const N: usize>(band_out: &mut [f32], rows: (&
 /// A band's rows of `N` whole chunks from their coefficients in registers
 /// (`held[k]`: chunk k's `p₀, p₁, q₀, q₁`).
 #[inline(always)]
-fn write_band_rows<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, fade): (&[f32], &[f32]), held: &[[B; 4]; N]) {
+fn write_band_rows<B: BatchLanes, const N: usize>(
+    band_out: &mut [f32],
+    (frac, fade): (&[f32], &[f32]),
+    held: &[[B; 4]; N],
+) {
     let w = B::WIDTH;
     // Indices, not zipped iterators (see `write_aligned_band`).
     let rows = frac.len().min(fade.len()).min(band_out.len() / (N * w));
@@ -2599,7 +2726,10 @@ fn write_band_rows<B: BatchLanes, const N: usize>(band_out: &mut [f32], (frac, f
 /// upper on axis 1; bit d − 1: on axis d) by the band's fades on axes 2..
 /// where its side on axis 1 is h's, and the other pairs by 0.
 #[inline(always)]
-fn half_blend_weights<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, f: [f32; D]) -> [[B; MAX_CORNERS / 2]; 4] {
+fn half_blend_weights<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    f: [f32; D],
+) -> [[B; MAX_CORNERS / 2]; 4] {
     let mut pair_weights = [[B::cst(0.0); MAX_CORNERS / 2]; 4];
     for (h, weights) in pair_weights.iter_mut().enumerate() {
         for (k, pw) in weights.iter_mut().enumerate().take(PointRows::<D>::PER_PLANE) {
@@ -2676,7 +2806,13 @@ impl Band {
     /// Write the waiting rows and forget them, streaming the stores
     /// ([`Stores::Streamed`]) where they are whole registers of memory.
     #[inline(always)]
-    fn write<K: Lattice<D>, B: BatchLanes, const D: usize>(&mut self, kind: &K, blends: &Columns, out: &mut [f32], stores: Stores) {
+    fn write<K: Lattice<D>, B: BatchLanes, const D: usize>(
+        &mut self,
+        kind: &K,
+        blends: &Columns,
+        out: &mut [f32],
+        stores: Stores,
+    ) {
         if self.rows.is_empty() {
             return;
         }
@@ -2737,7 +2873,14 @@ impl Band {
     /// `chunks` (up to [`Band::BLOCK`]) whole chunks from column `c` of
     /// every waiting row, the block's blends loaded once for all rows.
     #[inline(always)]
-    fn write_block<K: Lattice<D>, B: BatchLanes, const D: usize>(&self, kind: &K, view: &Entries<'_>, (c, chunks): (usize, usize), out: &mut [f32], stream: bool) {
+    fn write_block<K: Lattice<D>, B: BatchLanes, const D: usize>(
+        &self,
+        kind: &K,
+        view: &Entries<'_>,
+        (c, chunks): (usize, usize),
+        out: &mut [f32],
+        stream: bool,
+    ) {
         let w = B::WIDTH;
         let mut block = [[B::cst(0.0); MAX_CORNERS / 2]; Self::BLOCK];
         for (k, b) in block.iter_mut().enumerate().take(chunks) {
@@ -2791,7 +2934,11 @@ fn splat_all<B: BatchLanes>(values: [f32; 4]) -> [B; 4] {
 /// Flat kinds: a point from its column's blends along axis 0 (`blends`,
 /// pairs along axis 1 as `a, b − a`) and its row's fades on axes 1...
 #[inline(always)]
-fn from_blends<K: Lattice<D>, B: BatchLanes, const D: usize>(kind: &K, blends: &[B; MAX_CORNERS / 2], weights: &[B; 4]) -> B {
+fn from_blends<K: Lattice<D>, B: BatchLanes, const D: usize>(
+    kind: &K,
+    blends: &[B; MAX_CORNERS / 2],
+    weights: &[B; 4],
+) -> B {
     let mut v = [B::cst(0.0); MAX_CORNERS];
     // Axis 1's lerp, a + w·(b − a).
     for (j, vj) in v.iter_mut().enumerate().take((1 << D) / 4) {
@@ -2840,7 +2987,13 @@ impl<B: BatchLanes, const D: usize> Row<'_, B, D> {
 
     /// [`Row::exact_with`] from the corners' terms in `x` ([`x_terms`]).
     #[inline(always)]
-    fn exact_from_terms<K: Lattice<D>, const OFF_LINE: bool>(&self, kind: &K, terms: &[B; MAX_CORNERS], fade: B, rec: &impl Source<B>) -> B {
+    fn exact_from_terms<K: Lattice<D>, const OFF_LINE: bool>(
+        &self,
+        kind: &K,
+        terms: &[B; MAX_CORNERS],
+        fade: B,
+        rec: &impl Source<B>,
+    ) -> B {
         let mut weights = self.weights;
         weights[0] = fade;
         finish(kind, interpolate(corner_values_from_terms::<K, B, D, OFF_LINE>(kind, terms, rec), weights))
@@ -3017,7 +3170,11 @@ fn corner_values_from_terms<K: Lattice<D>, B: BatchLanes, const D: usize, const 
     let mut v = [B::cst(0.0); MAX_CORNERS];
     for c in 0..(1 << D) {
         let bound = rec.corner(c, K::BOUND);
-        v[c] = if OFF_LINE || c != 0 { kind.eval_unsigned_zero_from_x_term(&bound, terms[c]) } else { kind.eval_from_x_term(&bound, terms[c]) };
+        v[c] = if OFF_LINE || c != 0 {
+            kind.eval_unsigned_zero_from_x_term(&bound, terms[c])
+        } else {
+            kind.eval_from_x_term(&bound, terms[c])
+        };
     }
     v
 }

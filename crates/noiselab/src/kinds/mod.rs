@@ -242,7 +242,9 @@ impl<'a> Entries<'a> {
     pub(crate) fn load<B: BatchLanes>(&self, field: usize, at: usize) -> B {
         assert!(field < self.fields && B::WIDTH <= self.width && at <= self.width - B::WIDTH);
         // SAFETY: as in `get`, with `at + WIDTH − 1 < width` the last entry.
-        B::from_slice(unsafe { core::slice::from_raw_parts(self.from.as_ptr().add(field * self.stride + at), B::WIDTH) })
+        B::from_slice(unsafe {
+            core::slice::from_raw_parts(self.from.as_ptr().add(field * self.stride + at), B::WIDTH)
+        })
     }
 }
 
@@ -260,7 +262,9 @@ impl EntriesMut<'_> {
     pub(crate) fn store<B: BatchLanes>(&mut self, field: usize, at: usize, v: B) {
         assert!(field < self.fields && B::WIDTH <= self.width && at <= self.width - B::WIDTH);
         // SAFETY: as in `Entries::load`.
-        v.store(unsafe { core::slice::from_raw_parts_mut(self.from.as_mut_ptr().add(field * self.stride + at), B::WIDTH) });
+        v.store(unsafe {
+            core::slice::from_raw_parts_mut(self.from.as_mut_ptr().add(field * self.stride + at), B::WIDTH)
+        });
     }
 }
 

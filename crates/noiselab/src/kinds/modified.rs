@@ -25,9 +25,9 @@ use super::{corner_bit, fade5, fade5_deriv, Period, PeriodError, MAX_CORNERS};
 use crate::grid::Span;
 use crate::hash::fmix32;
 use crate::lanes::{BatchLanes, IntLanes, Lanes};
+use crate::noise::{Noise, NoiseGradient};
 use alloc::sync::Arc;
 use alloc::vec::Vec;
-use crate::noise::{Noise, NoiseGradient};
 
 /// The hash modified noise chains over the coordinates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -3,11 +3,11 @@
 //! `simplexnoise1234.c`.
 
 use super::finite_or_nan;
-use crate::hash::Permutation;
 use crate::grid::{self, ChunkSampler, Span};
+use crate::hash::Permutation;
 use crate::lanes::{BatchLanes, IntLanes, Lanes, Table16, Table256};
-use alloc::sync::Arc;
 use crate::noise::{Noise, NoiseGradient};
+use alloc::sync::Arc;
 
 /// Gustavson's `grad3`: the 12 edge midpoints of the cube, by column
 /// (padded to 16 entries for register-wide lookups).
@@ -301,7 +301,12 @@ trait ChunkTables<L: Lanes> {
     /// Corner 1 steps along `i` or `j` where `steps[0]` says so, else along
     /// `k`; corner 2 along `i` and `j` where `steps[1]` say so, and along
     /// `k` unless both do.
-    fn gradient_indices3(&mut self, noise: &Simplex, cell: [L::Int; 3], steps: [[L::Mask; 2]; 2]) -> Option<[L::Int; 4]>;
+    fn gradient_indices3(
+        &mut self,
+        noise: &Simplex,
+        cell: [L::Int; 3],
+        steps: [[L::Mask; 2]; 2],
+    ) -> Option<[L::Int; 4]>;
 }
 
 /// No chunk tables: every lane hashes its own corners.
@@ -409,7 +414,12 @@ impl<B: BatchLanes> ChunkTables<B> for ChunkTable {
     /// runs per table, where each lane would take ten lookups); each lane's
     /// four corners read from it.
     #[inline(always)]
-    fn gradient_indices3(&mut self, noise: &Simplex, cell: [B::Int; 3], steps: [[B::Mask; 2]; 2]) -> Option<[B::Int; 4]> {
+    fn gradient_indices3(
+        &mut self,
+        noise: &Simplex,
+        cell: [B::Int; 3],
+        steps: [[B::Mask; 2]; 2],
+    ) -> Option<[B::Int; 4]> {
         let (c0, d) = chunk_cells::<B, 3>(cell)?;
         let c0 = [c0[0] & 255, c0[1] & 255, c0[2] & 255];
         if self.cell != Some(c0) {

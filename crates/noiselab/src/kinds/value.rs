@@ -40,7 +40,6 @@ impl Value {
     pub fn seed(&self) -> u32 {
         self.seed
     }
-
 }
 
 impl<const D: usize> Lattice<D> for Value {

@@ -228,7 +228,11 @@ impl Worley {
     /// The distance of a search key.
     #[inline(always)]
     fn finish<L: Lanes>(&self, key: L) -> L {
-        if self.metric == Metric::Euclidean { key.sqrt() } else { key }
+        if self.metric == Metric::Euclidean {
+            key.sqrt()
+        } else {
+            key
+        }
     }
 
     /// A lower bound, as a search key, on the distance to any cell at
@@ -510,7 +514,14 @@ impl Worley {
                 }
                 let slot = if banded { band.len } else { 0 };
                 let first = slot * row_columns;
-                Interleaved::<D>::fill_row(&mut row_table, first, (&features, &row_leads), self.metric, row_frac, ncell + 2);
+                Interleaved::<D>::fill_row(
+                    &mut row_table,
+                    first,
+                    (&features, &row_leads),
+                    self.metric,
+                    row_frac,
+                    ncell + 2,
+                );
             }
             let ring2 = self.ring_bound(2, edge);
             // Deferred: the row's chunks in one cell, to its band.
@@ -613,8 +624,7 @@ impl Worley {
         i0: usize,
         out: &mut [f32],
         redo: &mut Vec<usize>,
-    )
-    where
+    ) where
         Worley: Noise<D>,
     {
         let w = B::WIDTH;
@@ -674,8 +684,12 @@ impl Worley {
         redo.reserve(band.len * (n / w + 1));
         // The metric a constant in each arm, as for `row_points`.
         match self.metric {
-            Metric::Euclidean => self.fixed(Metric::Euclidean, CellOutput::F1).band_chunks::<B, D>(band, tables, out, redo),
-            Metric::Manhattan => self.fixed(Metric::Manhattan, CellOutput::F1).band_chunks::<B, D>(band, tables, out, redo),
+            Metric::Euclidean => {
+                self.fixed(Metric::Euclidean, CellOutput::F1).band_chunks::<B, D>(band, tables, out, redo)
+            }
+            Metric::Manhattan => {
+                self.fixed(Metric::Manhattan, CellOutput::F1).band_chunks::<B, D>(band, tables, out, redo)
+            }
             _ => self.band_chunks::<B, D>(band, tables, out, redo),
         }
         for &at in redo.iter() {
@@ -735,7 +749,8 @@ impl Worley {
                         }
                     }
                     for (r, row) in rows.iter().enumerate() {
-                        let table = &tables.row_table.field(r * tables.row_columns + cell, 0)[..3 * Interleaved::<D>::ROW];
+                        let table =
+                            &tables.row_table.field(r * tables.row_columns + cell, 0)[..3 * Interleaved::<D>::ROW];
                         let mut least = B::splat(0.0);
                         for i in 0..3 * planes {
                             let (j, c) = (i / 3, i % 3);

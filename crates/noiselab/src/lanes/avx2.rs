@@ -10,7 +10,7 @@
 //! that the batch drivers call after detecting those features (`grid.rs`):
 //! that is what makes the `unsafe` intrinsic calls below sound.
 
-use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table16, Table256, F32x8};
+use super::{sealed::Sealed, BatchLanes, F32x8, IntLanes, Lanes, Table16, Table256};
 use core::arch::x86_64::*;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -206,7 +206,8 @@ impl Lanes for X8 {
     fn to_int_wrapping(self) -> I8 {
         // Exact for |x| < 2³¹; other lanes (rare) take `as i64 as i32`.
         let t = unsafe { _mm256_cvttps_epi32(self.0) };
-        let off = unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(t, _mm256_set1_epi32(i32::MIN)))) };
+        let off =
+            unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(t, _mm256_set1_epi32(i32::MIN)))) };
         if off == 0 {
             return I8(t);
         }
@@ -244,8 +245,10 @@ impl Lanes for X8 {
             let nibbles = _mm256_and_si256(bytes.0, _mm256_set1_epi8(15));
             for (t, f) in floats.iter().enumerate() {
                 let Some([low, high]) = f.halves() else { continue };
-                let low = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(low.as_ptr().cast())), nibbles);
-                let high = _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(high.as_ptr().cast())), nibbles);
+                let low =
+                    _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(low.as_ptr().cast())), nibbles);
+                let high =
+                    _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(_mm_loadu_si128(high.as_ptr().cast())), nibbles);
                 // Each entry's upper 16 bits as a word: vectors 0 and 1 in
                 // the first, 2 and 3 in the second, each then moved to its
                 // lanes' tops.
@@ -443,15 +446,28 @@ impl IntLanes for I8 {
             let lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(table.as_ptr().cast()), idx.0);
             let hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(table[8..].as_ptr().cast()), idx.0);
             let upper = _mm256_slli_epi32::<28>(idx.0);
-            I8(_mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo), _mm256_castsi256_ps(hi), _mm256_castsi256_ps(upper))))
+            I8(_mm256_castps_si256(_mm256_blendv_ps(
+                _mm256_castsi256_ps(lo),
+                _mm256_castsi256_ps(hi),
+                _mm256_castsi256_ps(upper),
+            )))
         }
     }
     #[inline(always)]
     fn lookup32(table: &[i32; 32], idx: Self) -> Self {
-        let (lo, hi) = (Self::lookup16(table[..16].try_into().unwrap(), idx), Self::lookup16(table[16..].try_into().unwrap(), idx));
+        let (lo, hi) = (
+            Self::lookup16(table[..16].try_into().unwrap(), idx),
+            Self::lookup16(table[16..].try_into().unwrap(), idx),
+        );
         // Bit 4 picks.
         let upper = unsafe { _mm256_slli_epi32::<27>(idx.0) };
-        I8(unsafe { _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo.0), _mm256_castsi256_ps(hi.0), _mm256_castsi256_ps(upper))) })
+        I8(unsafe {
+            _mm256_castps_si256(_mm256_blendv_ps(
+                _mm256_castsi256_ps(lo.0),
+                _mm256_castsi256_ps(hi.0),
+                _mm256_castsi256_ps(upper),
+            ))
+        })
     }
     #[inline(always)]
     fn gather_i32(table: &[i32], idx: Self) -> Self {
@@ -507,7 +523,8 @@ fn lookup_packed(table: &Table256, bytes: __m256i) -> __m256i {
     unsafe {
         let low = _mm256_and_si256(bytes, _mm256_set1_epi8(15));
         // `blendv` reads bit 7 of each byte: shift bit 4 (5, 6) there.
-        let (bit4, bit5, bit6) = (_mm256_slli_epi16::<3>(bytes), _mm256_slli_epi16::<2>(bytes), _mm256_slli_epi16::<1>(bytes));
+        let (bit4, bit5, bit6) =
+            (_mm256_slli_epi16::<3>(bytes), _mm256_slli_epi16::<2>(bytes), _mm256_slli_epi16::<1>(bytes));
         let mut pairs = [_mm256_setzero_si256(); 8];
         // No closure for a row's shuffle: it would not inherit AVX2.
         for (rows, p) in table.0.chunks_exact(32).zip(pairs.iter_mut()) {

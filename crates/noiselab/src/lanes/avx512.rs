@@ -11,7 +11,7 @@
 //! that the batch drivers call after detecting those features (`grid.rs`):
 //! that is what makes the `unsafe` intrinsic calls below sound.
 
-use super::{sealed::Sealed, BatchLanes, IntLanes, Lanes, Table16, Table256, F32x16};
+use super::{sealed::Sealed, BatchLanes, F32x16, IntLanes, Lanes, Table16, Table256};
 use core::arch::x86_64::*;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -285,8 +285,14 @@ impl BatchLanes for X16 {
             let i = _mm512_add_epi32(_mm512_set1_epi32(first), Self::iota().0);
             let (o, s) = (_mm512_set1_pd(origin), _mm512_set1_pd(step));
             let lo = _mm512_cvtpd_ps(_mm512_add_pd(o, _mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_castsi512_si256(i)), s)));
-            let hi = _mm512_cvtpd_ps(_mm512_add_pd(o, _mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_extracti64x4_epi64::<1>(i)), s)));
-            X16(_mm512_castpd_ps(_mm512_insertf64x4::<1>(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi))))
+            let hi = _mm512_cvtpd_ps(_mm512_add_pd(
+                o,
+                _mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_extracti64x4_epi64::<1>(i)), s),
+            ));
+            X16(_mm512_castpd_ps(_mm512_insertf64x4::<1>(
+                _mm512_castpd256_pd512(_mm256_castps_pd(lo)),
+                _mm256_castps_pd(hi),
+            )))
         }
     }
     #[inline(always)]
@@ -351,7 +357,9 @@ impl IntLanes for I16 {
         // Byte 4i of vector k is byte 16k + i; the other three are zeroed.
         let mut out = [Self::splat(0); 4];
         for (v, control) in out.iter_mut().zip(&UNPACK) {
-            *v = I16(unsafe { _mm512_maskz_permutexvar_epi8(0x1111_1111_1111_1111, _mm512_loadu_si512(control.as_ptr().cast()), b.0) });
+            *v = I16(unsafe {
+                _mm512_maskz_permutexvar_epi8(0x1111_1111_1111_1111, _mm512_loadu_si512(control.as_ptr().cast()), b.0)
+            });
         }
         out
     }

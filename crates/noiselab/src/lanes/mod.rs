@@ -27,7 +27,12 @@ macro_rules! bytes_as_vectors {
         }
         #[inline(always)]
         fn lookup_bytes(table: &Table256, b: [Self; 4]) -> [Self; 4] {
-            [Self::lookup256(table, b[0]), Self::lookup256(table, b[1]), Self::lookup256(table, b[2]), Self::lookup256(table, b[3])]
+            [
+                Self::lookup256(table, b[0]),
+                Self::lookup256(table, b[1]),
+                Self::lookup256(table, b[2]),
+                Self::lookup256(table, b[3]),
+            ]
         }
         #[inline(always)]
         fn add_bytes(a: [Self; 4], b: [Self; 4]) -> [Self; 4] {
@@ -600,7 +605,8 @@ mod tests {
     /// (so the lookup takes the lane-wise way), alone or beside the others.
     #[inline(always)]
     fn check_lookup<B: BatchLanes>() {
-        let two_bytes = Table16::new([1.0, -1.0, 0.0, -0.0, 0.5, -0.5, 2.0, -2.0, 3.0, -3.0, 1.0, 0.0, -1.0, 0.0, 0.5, 1.0]);
+        let two_bytes =
+            Table16::new([1.0, -1.0, 0.0, -0.0, 0.5, -0.5, 2.0, -2.0, 3.0, -3.0, 1.0, 0.0, -1.0, 0.0, 0.5, 1.0]);
         let reversed = Table16::new(core::array::from_fn(|k| two_bytes.single()[15 - k]));
         let wide = Table16::new(core::array::from_fn(|k| 0.1 * k as f32 - 0.7));
         assert!(two_bytes.halves().is_some() && reversed.halves().is_some() && wide.halves().is_none());
@@ -613,7 +619,8 @@ mod tests {
         }
         for four in idx.chunks_exact(4 * B::WIDTH) {
             let w = B::WIDTH;
-            let vectors = [B::load_int(four), B::load_int(&four[w..]), B::load_int(&four[2 * w..]), B::load_int(&four[3 * w..])];
+            let vectors =
+                [B::load_int(four), B::load_int(&four[w..]), B::load_int(&four[2 * w..]), B::load_int(&four[3 * w..])];
             for (v, got) in B::Int::lookup256x4(&table, vectors).into_iter().enumerate() {
                 for k in 0..B::WIDTH {
                     let i = four[v * B::WIDTH + k];

@@ -268,14 +268,22 @@ fn truncate64(x: f64) -> i32 {
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
 fn truncate32(x: f32) -> i32 {
-    if (-2147483648.0..2147483648.0).contains(&x) { x as i32 } else { i32::MIN }
+    if (-2147483648.0..2147483648.0).contains(&x) {
+        x as i32
+    } else {
+        i32::MIN
+    }
 }
 
 /// [`truncate64`] elsewhere.
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
 fn truncate64(x: f64) -> i32 {
-    if (-2147483648.0..2147483648.0).contains(&x) { x as i32 } else { i32::MIN }
+    if (-2147483648.0..2147483648.0).contains(&x) {
+        x as i32
+    } else {
+        i32::MIN
+    }
 }
 
 /// `DynNoise::get`, by name for the macro.

@@ -8,7 +8,10 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use noiselab::grid::fill_grid_at;
-use noiselab::{Accuracy, CellOutput, Classic, Fast, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Kernel, Looped, Metric, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Warp, Worley};
+use noiselab::{
+    Accuracy, CellOutput, Classic, Fast, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Kernel, Looped, Metric,
+    Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Warp, Worley,
+};
 
 /// The system allocator, counting each thread's allocations.
 struct Counting;
@@ -81,7 +84,12 @@ fn check_steady<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
             let before = allocations();
             fill_all(&mut outs);
             let made = allocations() - before;
-            assert_eq!(made, 0, "{name} {D}D {level:?} {accuracy:?}: {made} allocations filling {} grids again", grids.len());
+            assert_eq!(
+                made,
+                0,
+                "{name} {D}D {level:?} {accuracy:?}: {made} allocations filling {} grids again",
+                grids.len()
+            );
         }
     }
 }

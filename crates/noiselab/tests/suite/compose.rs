@@ -34,7 +34,10 @@ fn warp_reads_the_noise_at_the_displaced_point() {
     let warp = Warp::new(base, Improved::new, 10, 0.7, 0.5).unwrap();
     for p in [[0.3, -1.2], [5.5, 2.25], [-3.0, 0.125]] {
         let at = p.map(|c| c * 0.5);
-        let q = [p[0] + 0.7 * Noise::<2>::get(&Improved::new(11), at), p[1] + 0.7 * Noise::<2>::get(&Improved::new(12), at)];
+        let q = [
+            p[0] + 0.7 * Noise::<2>::get(&Improved::new(11), at),
+            p[1] + 0.7 * Noise::<2>::get(&Improved::new(12), at),
+        ];
         assert_eq!(warp.get(p), base.get(q));
     }
     // Zero amplitude is the identity.

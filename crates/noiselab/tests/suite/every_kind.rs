@@ -4,7 +4,11 @@
 
 use noiselab::grid::{fill_grid_at, fill_points_at};
 use noiselab::hash::SplitMix64;
-use noiselab::{Accuracy, Axes, Span, Stores, Classic, Grid, GridError, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Sparse, Value, Kernel, Worley, CellOutput, Metric, Fast, Looped, Warp, Fractal, FractalMode};
+use noiselab::{
+    Accuracy, Axes, CellOutput, Classic, Fast, Fractal, FractalMode, Grid, GridError, Improved, ImprovedVariant,
+    Kernel, Looped, Metric, Modified, ModifiedHash, ModifiedTexture, Noise, SimdLevel, Simplex, SimplexN, Span, Sparse,
+    Stores, Value, Warp, Worley,
+};
 
 /// Runs `$check!(name, noise, D, (lo, hi))` for every kind, dimension and
 /// documented range (the range each type's docs promise).
@@ -40,10 +44,30 @@ macro_rules! for_every_kind {
         $check!("value", Value::new(0), 4, (-1.0, 1.0));
         $check!("looped-improved", Looped::new(Improved::new(2), 2.5).unwrap(), 3, (-1.04, 1.04));
         $check!("warped-value", Warp::new(Value::new(1), Improved::new, 7, 0.8, 0.5).unwrap(), 2, (-1.0, 1.0));
-        $check!("warped-improved-x3", Warp::new(Improved::new(1), Value::new, 7, 0.8, 0.5).unwrap().iterated(3, 0.5, 2.0).unwrap(), 3, (-1.04, 1.04));
-        $check!("fbm-improved", Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(), 3, (-1.04, 1.04));
-        $check!("ridged-simplex", Fractal::new(|o| Simplex::new(o.seed), 1, 4, FractalMode::Ridged).unwrap(), 2, (0.0, 1.0));
-        $check!("hybrid-value", Fractal::new(|o| Value::new(o.seed), 1, 4, FractalMode::Hybrid).unwrap(), 4, (-1.5, 1.5));
+        $check!(
+            "warped-improved-x3",
+            Warp::new(Improved::new(1), Value::new, 7, 0.8, 0.5).unwrap().iterated(3, 0.5, 2.0).unwrap(),
+            3,
+            (-1.04, 1.04)
+        );
+        $check!(
+            "fbm-improved",
+            Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(),
+            3,
+            (-1.04, 1.04)
+        );
+        $check!(
+            "ridged-simplex",
+            Fractal::new(|o| Simplex::new(o.seed), 1, 4, FractalMode::Ridged).unwrap(),
+            2,
+            (0.0, 1.0)
+        );
+        $check!(
+            "hybrid-value",
+            Fractal::new(|o| Value::new(o.seed), 1, 4, FractalMode::Hybrid).unwrap(),
+            4,
+            (-1.5, 1.5)
+        );
         $check!("fast", Fast::new(0), 2, (-1.47, 1.47));
         $check!("fast", Fast::new(3), 3, (-1.47, 1.47));
         $check!("worley", Worley::new(0), 1, (0.0, 1.0));
@@ -52,7 +76,12 @@ macro_rules! for_every_kind {
         $check!("worley", Worley::new(0), 4, (0.0, 2.0));
         $check!("worley-f2-f1", Worley::new(1).with_output(CellOutput::F2MinusF1), 2, (0.0, 1.5));
         $check!("worley-cells", Worley::new(1).with_output(CellOutput::CellValue), 3, (-1.0, 1.0));
-        $check!("worley-manhattan-f3", Worley::new(3).with_metric(Metric::Manhattan).unwrap().with_output(CellOutput::F3), 2, (0.0, 3.0));
+        $check!(
+            "worley-manhattan-f3",
+            Worley::new(3).with_metric(Metric::Manhattan).unwrap().with_output(CellOutput::F3),
+            2,
+            (0.0, 3.0)
+        );
         $check!("worley-minkowski", Worley::new(3).with_metric(Metric::Minkowski(3.0)).unwrap(), 2, (0.0, 1.5));
         // Sparse convolution is unbounded (std ¼, tails heavier for few impulses):
         // ±2.5 is ten sigma.
@@ -60,7 +89,12 @@ macro_rules! for_every_kind {
         $check!("sparse", Sparse::new(4), 2, (-2.0, 2.0));
         $check!("sparse", Sparse::new(0).with_impulses(10).unwrap(), 3, (-2.5, 2.5));
         $check!("sparse", Sparse::new(1).with_impulses(6).unwrap(), 4, (-2.5, 2.5));
-        $check!("sparse-gaussian", Sparse::new(2).with_kernel(Kernel::gaussian()).with_impulses(8).unwrap(), 2, (-2.0, 2.0));
+        $check!(
+            "sparse-gaussian",
+            Sparse::new(2).with_kernel(Kernel::gaussian()).with_impulses(8).unwrap(),
+            2,
+            (-2.0, 2.0)
+        );
     };
 }
 
@@ -85,7 +119,11 @@ fn probe_points<const D: usize>() -> Vec<[f32; D]> {
                 2 => {
                     // A cell border, approached from either side.
                     let k = uniform(-50.0, 50.0).round();
-                    if uniform(0.0, 1.0) < 0.5 { k.next_up() } else { k.next_down() }
+                    if uniform(0.0, 1.0) < 0.5 {
+                        k.next_up()
+                    } else {
+                        k.next_down()
+                    }
                 }
                 _ => -uniform(0.0, 1000.0),
             };
@@ -116,7 +154,11 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
             fill_grid_at(level, noise, &grid, &mut out, Accuracy::Exact).unwrap();
             for (i, &b) in out.iter().enumerate() {
                 let s = noise.get_f32(grid.point(i));
-                assert!(same(s, b), "{name} {D}D {level:?}: grid {grid:?} point {:?}: scalar {s:e} batch {b:e}", grid.point(i));
+                assert!(
+                    same(s, b),
+                    "{name} {D}D {level:?}: grid {grid:?} point {:?}: scalar {s:e} batch {b:e}",
+                    grid.point(i)
+                );
             }
         }
     }
@@ -138,7 +180,11 @@ fn check_batch<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
                 noise.dispatch_span(level, Span { axes: &axes, start, accuracy: Accuracy::Exact, stores }, &mut out);
                 for (k, &b) in out.iter().enumerate() {
                     let s = noise.get_f32(grid.point(start + k));
-                    assert!(same(s, b), "{name} {D}D {level:?} {stores:?} span {start}+{len}, point {}: scalar {s:e}, batch {b:e}", start + k);
+                    assert!(
+                        same(s, b),
+                        "{name} {D}D {level:?} {stores:?} span {start}+{len}, point {}: scalar {s:e}, batch {b:e}",
+                        start + k
+                    );
                 }
             }
         }
@@ -181,7 +227,10 @@ fn streamed_stores_give_the_cached_bits() {
         check_streamed(&Modified::new(1), grid);
         check_streamed(&Value::new(4), grid);
     }
-    check_streamed(&Improved::new(3), &Grid::new([-1.3, 0.2, 0.4, 0.1], [1.0 / 16.0, 1.0 / 16.0, 0.3, 0.5], [40, 18, 2, 2]));
+    check_streamed(
+        &Improved::new(3),
+        &Grid::new([-1.3, 0.2, 0.4, 0.1], [1.0 / 16.0, 1.0 / 16.0, 0.3, 0.5], [40, 18, 2, 2]),
+    );
 }
 
 #[inline(never)]
@@ -194,11 +243,22 @@ fn check_streamed<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>) {
             noise.dispatch_span(level, Span { axes: &axes, start: 0, accuracy, stores: Stores::Cached }, &mut cached);
             for offset in [0, 1, 3, 4, 7, 8, 15] {
                 let mut buf = vec![f32::NAN; n + 16];
-                noise.dispatch_span(level, Span { axes: &axes, start: 0, accuracy, stores: Stores::Streamed }, &mut buf[offset..offset + n]);
+                noise.dispatch_span(
+                    level,
+                    Span { axes: &axes, start: 0, accuracy, stores: Stores::Streamed },
+                    &mut buf[offset..offset + n],
+                );
                 for (k, (&c, &s)) in cached.iter().zip(&buf[offset..]).enumerate() {
-                    assert_eq!(c.to_bits(), s.to_bits(), "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}, point {k}: {c:e} vs {s:e}");
+                    assert_eq!(
+                        c.to_bits(),
+                        s.to_bits(),
+                        "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}, point {k}: {c:e} vs {s:e}"
+                    );
                 }
-                assert!(buf[..offset].iter().chain(&buf[offset + n..]).all(|v| v.is_nan()), "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}: a store outside the output");
+                assert!(
+                    buf[..offset].iter().chain(&buf[offset + n..]).all(|v| v.is_nan()),
+                    "{D}D {grid:?} {level:?} {accuracy:?} offset {offset}: a store outside the output"
+                );
             }
         }
     }
@@ -229,9 +289,16 @@ fn check_offsets<N: Noise<D>, const D: usize>(noise: &N, grid: &Grid<D>) {
             let start = buf.as_ptr().align_offset(64) + offset;
             fill_grid_at(level, noise, grid, &mut buf[start..start + n], Accuracy::Exact).unwrap();
             for (k, (&w, &v)) in want.iter().zip(&buf[start..]).enumerate() {
-                assert_eq!(w.to_bits(), v.to_bits(), "{D}D {grid:?} {level:?} offset {offset}, point {k}: {w:e} vs {v:e}");
+                assert_eq!(
+                    w.to_bits(),
+                    v.to_bits(),
+                    "{D}D {grid:?} {level:?} offset {offset}, point {k}: {w:e} vs {v:e}"
+                );
             }
-            assert!(buf[..start].iter().chain(&buf[start + n..]).all(|v| v.is_nan()), "{D}D {grid:?} {level:?} offset {offset}: a store outside the output");
+            assert!(
+                buf[..start].iter().chain(&buf[start + n..]).all(|v| v.is_nan()),
+                "{D}D {grid:?} {level:?} offset {offset}: a store outside the output"
+            );
         }
     }
 }
@@ -267,11 +334,15 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         // Whole rows in long runs, many of them: batches of rows, full and
         // partial, cut where rows cross into the next plane of cells (and
         // one row on the lattice line y = 0).
-        Grid::new([-0.5; D], [1.0 / 32.0; D], core::array::from_fn(|d| match d {
-            0 => 48,
-            1 => 37,
-            _ => 2,
-        })),
+        Grid::new(
+            [-0.5; D],
+            [1.0 / 32.0; D],
+            core::array::from_fn(|d| match d {
+                0 => 48,
+                1 => 37,
+                _ => 2,
+            }),
+        ),
         // Tiles inside one cell along axis 0: rows of one to four whole
         // chunks of 8 or 16 lanes, in batches cut from axis 1's runs and
         // written with the chunks' positions held, on and off the lattice
@@ -312,7 +383,11 @@ pub(crate) fn probe_grids<const D: usize>() -> Vec<Grid<D>> {
         // last axis at 0.3 + i·∞ (NaN, then +∞), and axis 0 from 3.0e38 by
         // 1e37, past f32::MAX (≈ 3.4e38) from column 5 of each row.
         Grid::new([0.3; D], core::array::from_fn(|d| if d == D - 1 { f64::INFINITY } else { 0.0625 }), size(37, 2)),
-        Grid::new(core::array::from_fn(|d| if d == 0 { 3.0e38 } else { 0.3 }), core::array::from_fn(|d| if d == 0 { 1.0e37 } else { 0.25 }), size(37, 2)),
+        Grid::new(
+            core::array::from_fn(|d| if d == 0 { 3.0e38 } else { 0.3 }),
+            core::array::from_fn(|d| if d == 0 { 1.0e37 } else { 0.25 }),
+            size(37, 2),
+        ),
     ]
 }
 
@@ -367,7 +442,8 @@ fn check_special<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
         }
     }
     // Far beyond ±2³¹ cells: finite, no panic (debug builds check overflow).
-    for huge in [3.0e9, -3.0e9, 1.0e15, -1.0e15, 1.0e300, -1.0e300, f64::MAX, f64::MIN, 2.0f64.powi(31), -(2.0f64.powi(31))]
+    for huge in
+        [3.0e9, -3.0e9, 1.0e15, -1.0e15, 1.0e300, -1.0e300, f64::MAX, f64::MIN, 2.0f64.powi(31), -(2.0f64.powi(31))]
     {
         let mut p = [0.5; D];
         p[0] = huge;
@@ -378,7 +454,11 @@ fn check_special<N: Noise<D>, const D: usize>(name: &str, noise: &N) {
     }
     // Batches whose output does not fit: a typed error, nothing written.
     let mut out = [7.0f32; 3];
-    assert_eq!(noise.fill_points(&[[0.5; D]; 2], &mut out), Err(GridError::PointsMismatch { points: 2, out: 3 }), "{name} {D}D");
+    assert_eq!(
+        noise.fill_points(&[[0.5; D]; 2], &mut out),
+        Err(GridError::PointsMismatch { points: 2, out: 3 }),
+        "{name} {D}D"
+    );
     let grid = Grid::new([0.0; D], [0.5; D], [2; D]);
     for accuracy in [Accuracy::Exact, Accuracy::Fast] {
         let filled = fill_grid_at(SimdLevel::best(), noise, &grid, &mut out, accuracy);
@@ -469,6 +549,10 @@ fn large_grids_equal_the_scalar_api() {
     // Rows longer than the fractal's block: octaves fill pieces of rows.
     let value_fbm = Fractal::new(|o| Value::new(o.seed), 1, 2, FractalMode::Fbm).unwrap();
     check("fbm value", &value_fbm, Grid::new([0.3, -2.0], [1.0 / 32.0, 1.0 / 64.0], [70_000, 5]));
-    check("fbm improved", &Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(), Grid::new([0.0; 2], [1.0 / 64.0; 2], [1500, 400]));
+    check(
+        "fbm improved",
+        &Fractal::new(|o| Improved::new(o.seed), 1, 5, FractalMode::Fbm).unwrap(),
+        Grid::new([0.0; 2], [1.0 / 64.0; 2], [1500, 400]),
+    );
     check("worley", &Worley::new(3), Grid::new([-7.0; 2], [1.0 / 16.0; 2], [600, 600]));
 }

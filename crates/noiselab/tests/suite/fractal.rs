@@ -10,7 +10,9 @@ use noiselab::{
 
 fn random_points<const D: usize>(count: usize, seed: u64) -> Vec<[f64; D]> {
     let mut rng = SplitMix64(seed);
-    (0..count).map(|_| core::array::from_fn(|_| (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0)).collect()
+    (0..count)
+        .map(|_| core::array::from_fn(|_| (rng.next() >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0))
+        .collect()
 }
 
 // Out of line (as every generic helper here): inlined, each test's helpers
@@ -30,7 +32,10 @@ fn check_ranges<N: Noise<D>, const D: usize>(name: &str, make: impl Fn(u32) -> N
             max = max.max(v);
         }
         assert!(min >= lo && max <= hi, "{name} {mode:?} {D}D: [{min}, {max}] outside [{lo}, {hi}]");
-        assert!(!symmetric || max - min > 0.25 * (hi - lo), "{name} {mode:?}: [{min}, {max}] spans too little of [{lo}, {hi}]");
+        assert!(
+            !symmetric || max - min > 0.25 * (hi - lo),
+            "{name} {mode:?}: [{min}, {max}] spans too little of [{lo}, {hi}]"
+        );
     }
 }
 
@@ -58,17 +63,30 @@ fn tiling_composes_across_octaves() {
         }
     };
     for mode in FractalMode::ALL {
-        let improved = Fractal::new(|o| Improved::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 5, mode).unwrap();
+        let improved =
+            Fractal::new(|o| Improved::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 5, mode)
+                .unwrap();
         check("improved", &|p| improved.get(p));
-        let value = Fractal::new(|o| Value::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 5, mode).unwrap();
+        let value =
+            Fractal::new(|o| Value::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 5, mode).unwrap();
         check("value", &|p| value.get(p));
-        let worley = Fractal::new(|o| Worley::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
+        let worley =
+            Fractal::new(|o| Worley::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
         check("worley", &|p| worley.get(p));
-        let classic = Fractal::new(|o| Classic::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
+        let classic =
+            Fractal::new(|o| Classic::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
         check("classic", &|p| classic.get(p));
-        let modified = Fractal::new(|o| Modified::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode).unwrap();
+        let modified =
+            Fractal::new(|o| Modified::new(o.seed).with_period(o.period(period).unwrap()).unwrap(), 1, 4, mode)
+                .unwrap();
         check("modified", &|p| modified.get(p));
-        let sparse = Fractal::new(|o| Sparse::new(o.seed).with_impulses(4).unwrap().with_period(o.period(period).unwrap()).unwrap(), 1, 3, mode).unwrap();
+        let sparse = Fractal::new(
+            |o| Sparse::new(o.seed).with_impulses(4).unwrap().with_period(o.period(period).unwrap()).unwrap(),
+            1,
+            3,
+            mode,
+        )
+        .unwrap();
         check("sparse", &|p| sparse.get(p));
     }
     // A non-integer lacunarity cannot tile: a typed error, not a seam.
@@ -96,7 +114,11 @@ fn gradients_through_every_mode_match_central_differences() {
                     continue;
                 }
                 checked += 1;
-                assert!((numeric - g[k]).abs() < 1e-5 * (1.0 + g[k].abs()), "{mode:?} d/dx{k} at {p:?}: {} vs {numeric}", g[k]);
+                assert!(
+                    (numeric - g[k]).abs() < 1e-5 * (1.0 + g[k].abs()),
+                    "{mode:?} d/dx{k} at {p:?}: {} vs {numeric}",
+                    g[k]
+                );
             }
         }
         assert!(checked > 4000, "{mode:?}: only {checked} smooth stencils");
@@ -151,7 +173,11 @@ fn band_limited_fills_are_the_fractal_of_the_octaves_a_grid_resolves() {
             let same = got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits());
             assert!(same, "{mode:?} {step:?}: not the {kept}-octave fractal's fast fill");
             let p = grid.point(size[0] / 2);
-            assert_eq!(limited.get_f32(p).to_bits(), make(6).get_f32(p).to_bits(), "{mode:?}: points keep every octave");
+            assert_eq!(
+                limited.get_f32(p).to_bits(),
+                make(6).get_f32(p).to_bits(),
+                "{mode:?}: points keep every octave"
+            );
         }
     }
     // One sample: no step to judge by, so every octave is summed.
@@ -165,7 +191,9 @@ fn band_limited_fills_are_the_fractal_of_the_octaves_a_grid_resolves() {
 
 #[test]
 fn fractals_over_run_time_noises_equal_the_static_ones() {
-    let boxed = Fractal::new(|o| Box::new(Improved::new(o.seed)) as Box<dyn noiselab::DynNoise<3>>, 2, 4, FractalMode::Ridged).unwrap();
+    let boxed =
+        Fractal::new(|o| Box::new(Improved::new(o.seed)) as Box<dyn noiselab::DynNoise<3>>, 2, 4, FractalMode::Ridged)
+            .unwrap();
     let fixed = Fractal::new(|o| Improved::new(o.seed), 2, 4, FractalMode::Ridged).unwrap();
     let grid = noiselab::Grid::new([0.1, -0.2, 0.3], [0.07, 0.05, 0.0], [37, 11, 1]);
     let (mut a, mut b) = (vec![0f32; grid.len()], vec![0f32; grid.len()]);
@@ -193,7 +221,10 @@ fn nested_fractal_grids_equal_their_points_in_every_mode() {
             }
             let mut again = vec![0f32; grid.len()];
             outer.fill_grid(&grid, &mut again).unwrap();
-            assert!(out.iter().zip(&again).all(|(a, b)| a.to_bits() == b.to_bits()), "{mode:?} {size:?}: second fill differs");
+            assert!(
+                out.iter().zip(&again).all(|(a, b)| a.to_bits() == b.to_bits()),
+                "{mode:?} {size:?}: second fill differs"
+            );
         }
     }
 }
@@ -202,7 +233,10 @@ fn nested_fractal_grids_equal_their_points_in_every_mode() {
 fn bad_parameters_are_typed_errors() {
     use noiselab::ComposeError;
     assert_eq!(Fractal::new(|o| Improved::new(o.seed), 0, 0, FractalMode::Fbm).unwrap_err(), ComposeError::Octaves(0));
-    assert_eq!(Fractal::new(|o| Improved::new(o.seed), 0, 31, FractalMode::Fbm).unwrap_err(), ComposeError::Octaves(31));
+    assert_eq!(
+        Fractal::new(|o| Improved::new(o.seed), 0, 31, FractalMode::Fbm).unwrap_err(),
+        ComposeError::Octaves(31)
+    );
     assert!(Fractal::with(|o| Improved::new(o.seed), 0, 3, FractalMode::Fbm, 1.0, 0.5).is_err());
     assert!(Fractal::with(|o| Improved::new(o.seed), 0, 3, FractalMode::Fbm, 2.0, -0.5).is_err());
     let octave = noiselab::Octave { index: 1, seed: 0, frequency: 2.5 };
@@ -272,7 +306,11 @@ fn fractal_grids_on_integer_points_equal_their_points() {
     check_on_integers::<_, 2>("classic", Classic::new, &grids);
     check_on_integers::<_, 2>("modified", Modified::new, &grids);
     // Chosen at run time, as the command line's noises are.
-    check_on_integers::<_, 2>("boxed improved", |s| Box::new(Improved::new(s)) as Box<dyn noiselab::DynNoise<2>>, &grids[..2]);
+    check_on_integers::<_, 2>(
+        "boxed improved",
+        |s| Box::new(Improved::new(s)) as Box<dyn noiselab::DynNoise<2>>,
+        &grids[..2],
+    );
     check_on_integers::<_, 3>("improved", Improved::new, &[Grid::new([1.0, 2.0, -3.0], [0.125; 3], [9, 5, 4])]);
     // Two blocks of the fill (the second starts mid-grid).
     check_on_integers::<_, 2>("improved", Improved::new, &[Grid::new([0.0; 2], [1.0 / 32.0; 2], [600, 300])]);
@@ -335,10 +373,18 @@ fn fractal_grids_in_strips_equal_their_points() {
             grid_equals_points(&fractal, grid, &format!("{mode:?}"));
         }
         let solid = Fractal::new(|o| Value::new(o.seed), 2, 4, mode).unwrap();
-        grid_equals_points(&solid, &Grid::new([0.3, -1.0, 2.0], [0.05, 0.4, 0.5], [1030, 3, 2]), &format!("3D {mode:?}"));
+        grid_equals_points(
+            &solid,
+            &Grid::new([0.3, -1.0, 2.0], [0.05, 0.4, 0.5], [1030, 3, 2]),
+            &format!("3D {mode:?}"),
+        );
         // Octaves 5 to 8 past the float range (counted as 0).
         let loud = Fractal::new(|o| Improved::new(o.seed), 2, 9, mode).unwrap();
-        let points = grid_equals_points(&loud, &Grid::new([1.0e37, 0.2], [1.0e34, 0.1], [1100, 2]), &format!("overflowing {mode:?}"));
+        let points = grid_equals_points(
+            &loud,
+            &Grid::new([1.0e37, 0.2], [1.0e34, 0.1], [1100, 2]),
+            &format!("overflowing {mode:?}"),
+        );
         assert!(points.iter().all(|v| v.is_finite()), "{mode:?}: finite input, finite values");
         // Spans: rows 2 and 3; from mid-row 0 to mid-row 3.
         let grid = &grids[0];
@@ -346,10 +392,19 @@ fn fractal_grids_in_strips_equal_their_points() {
         for level in SimdLevel::available() {
             for (start, len) in [(2 * 1100, 2 * 1100), (7, 3 * 1100)] {
                 let mut out = vec![f32::NAN; len];
-                fractal.dispatch_span(level, Span { axes: &axes, start, accuracy: Accuracy::Exact, stores: Stores::Cached }, &mut out);
+                fractal.dispatch_span(
+                    level,
+                    Span { axes: &axes, start, accuracy: Accuracy::Exact, stores: Stores::Cached },
+                    &mut out,
+                );
                 for (k, &v) in out.iter().enumerate() {
                     let p = grid.point(start + k);
-                    assert_eq!(v.to_bits(), fractal.get_f32(p).to_bits(), "{mode:?} {level:?} span {start}+{len}: point {}", start + k);
+                    assert_eq!(
+                        v.to_bits(),
+                        fractal.get_f32(p).to_bits(),
+                        "{mode:?} {level:?} span {start}+{len}: point {}",
+                        start + k
+                    );
                 }
             }
         }
@@ -382,7 +437,10 @@ fn streamed_fractal_combines_equal_their_points() {
                         assert_eq!(v.to_bits(), p.to_bits(), "{mode:?} {level:?} {grid:?} offset {offset}: point {k}");
                     }
                     let outside = buf[..offset].iter().chain(&buf[offset + n..]);
-                    assert!(outside.into_iter().all(|v| v.is_nan()), "{mode:?} {level:?} offset {offset}: wrote outside the output");
+                    assert!(
+                        outside.into_iter().all(|v| v.is_nan()),
+                        "{mode:?} {level:?} offset {offset}: wrote outside the output"
+                    );
                 }
             }
         }

@@ -49,7 +49,9 @@ fn check_gradient<N: NoiseGradient<D>, const D: usize>(name: &str, noise: &N, co
         }
     }
     assert!(straddles * 1000 <= count * D, "{name} {D}D: {straddles} stencils straddle a jump");
-    eprintln!("{name} {D}D: worst |analytic − central difference| over {count} points: {worst:e}; {straddles} straddles");
+    eprintln!(
+        "{name} {D}D: worst |analytic − central difference| over {count} points: {worst:e}; {straddles} straddles"
+    );
 }
 
 #[test]

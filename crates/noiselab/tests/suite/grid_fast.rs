@@ -4,8 +4,8 @@
 
 use noiselab::grid::fill_grid_at;
 use noiselab::{
-    Accuracy, Axes, Span, Stores, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise,
-    SimdLevel, Simplex, Value, Worley,
+    Accuracy, Axes, Classic, Fractal, FractalMode, Grid, Improved, ImprovedVariant, Modified, ModifiedHash,
+    ModifiedTexture, Noise, SimdLevel, Simplex, Span, Stores, Value, Worley,
 };
 
 /// The documented bound.
@@ -120,8 +120,16 @@ fn fast_fills_of_other_kinds_are_exact() {
     let grid = Grid::new([0.3, -1.2], [1.0 / 32.0, 0.07], [100, 30]);
     for level in SimdLevel::available() {
         for (name, exact, fast) in [
-            ("simplex", fill(level, &Simplex::new(3), &grid, Accuracy::Exact), fill(level, &Simplex::new(3), &grid, Accuracy::Fast)),
-            ("worley", fill(level, &Worley::new(3), &grid, Accuracy::Exact), fill(level, &Worley::new(3), &grid, Accuracy::Fast)),
+            (
+                "simplex",
+                fill(level, &Simplex::new(3), &grid, Accuracy::Exact),
+                fill(level, &Simplex::new(3), &grid, Accuracy::Fast),
+            ),
+            (
+                "worley",
+                fill(level, &Worley::new(3), &grid, Accuracy::Exact),
+                fill(level, &Worley::new(3), &grid, Accuracy::Fast),
+            ),
         ] {
             for (e, f) in exact.iter().zip(&fast) {
                 assert_eq!(e.to_bits(), f.to_bits(), "{name} at {level:?}");
@@ -165,10 +173,19 @@ fn check_spans<N: Noise<D>, const D: usize>(noise: &N, grid: Grid<D>) {
             // Streamed stores too, which whole fills take only past 32 MiB.
             for stores in [Stores::Cached, Stores::Streamed] {
                 let mut out = vec![0f32; count * nx];
-                noise.dispatch_span(level, Span { axes: &axes, start: first * nx, accuracy: Accuracy::Fast, stores }, &mut out);
+                noise.dispatch_span(
+                    level,
+                    Span { axes: &axes, start: first * nx, accuracy: Accuracy::Fast, stores },
+                    &mut out,
+                );
                 let expected = &whole[first * nx..(first + count) * nx];
                 for (k, (&e, &o)) in expected.iter().zip(&out).enumerate() {
-                    assert_eq!(e.to_bits(), o.to_bits(), "{D}D {level:?} {stores:?}, rows {first}+{count}, point {}: {e:e} vs {o:e}", first * nx + k);
+                    assert_eq!(
+                        e.to_bits(),
+                        o.to_bits(),
+                        "{D}D {level:?} {stores:?}, rows {first}+{count}, point {}: {e:e} vs {o:e}",
+                        first * nx + k
+                    );
                 }
             }
         }
@@ -213,7 +230,11 @@ fn check_tile<N: Noise<2>>(noise: &N, origin: [f64; 2], step: [f64; 2], size: [u
     // The tile at (32, 32) in a grid of 32 more points on every side
     // (dyadic steps: its coordinates are the tile's exactly).
     const MARGIN: usize = 32;
-    let around = Grid::new(core::array::from_fn(|d| origin[d] - MARGIN as f64 * step[d]), step, [size[0] + 2 * MARGIN, size[1] + 2 * MARGIN]);
+    let around = Grid::new(
+        core::array::from_fn(|d| origin[d] - MARGIN as f64 * step[d]),
+        step,
+        [size[0] + 2 * MARGIN, size[1] + 2 * MARGIN],
+    );
     let tile = Grid::new(origin, step, size);
     for level in SimdLevel::available() {
         let larger = fill(level, noise, &around, Accuracy::Fast);
@@ -222,7 +243,11 @@ fn check_tile<N: Noise<2>>(noise: &N, origin: [f64; 2], step: [f64; 2], size: [u
         for (j, row) in out.chunks_exact(size[0]).enumerate() {
             let from = (j + MARGIN) * around.size[0] + MARGIN;
             for (i, (&t, &e)) in row.iter().zip(&larger[from..from + size[0]]).enumerate() {
-                assert_eq!(t.to_bits(), e.to_bits(), "{level:?}, tile at {origin:?} step {step:?} size {size:?}, point ({i}, {j}): {t:e} vs {e:e}");
+                assert_eq!(
+                    t.to_bits(),
+                    e.to_bits(),
+                    "{level:?}, tile at {origin:?} step {step:?} size {size:?}, point ({i}, {j}): {t:e} vs {e:e}"
+                );
             }
         }
     }
@@ -282,7 +307,11 @@ fn check_general<N: Noise<2>>(noise: &N, tile: &Grid<2>) {
     let axes = Axes::of(tile);
     for level in SimdLevel::available() {
         let mut general = vec![f32::NAN; tile.len()];
-        noise.dispatch_span(level, Span { axes: &axes, start: 0, accuracy: Accuracy::Fast, stores: Stores::Streamed }, &mut general);
+        noise.dispatch_span(
+            level,
+            Span { axes: &axes, start: 0, accuracy: Accuracy::Fast, stores: Stores::Streamed },
+            &mut general,
+        );
         let mut out = vec![f32::NAN; tile.len()];
         fill_grid_at(level, noise, tile, &mut out, Accuracy::Fast).unwrap();
         for (k, (&t, &g)) in out.iter().zip(&general).enumerate() {

@@ -33,13 +33,29 @@ fn splatting_equals_point_evaluation() {
     compare("3D slice z = 0", &n, Grid::new([-1.5, -1.5, 0.0], [0.04, 0.04, 0.0], [100, 100, 1]));
     compare("3D slice z = −0.73", &n, Grid::new([0.2, -3.1, -0.73], [0.03, 0.05, 0.0], [120, 80, 1]));
     compare("4D slice", &n, Grid::new([-0.4, 0.9, 0.5, -2.25], [0.06, 0.06, 0.0, 0.0], [60, 60, 1, 1]));
-    compare("gaussian 2D", &Sparse::new(1).with_kernel(Kernel::gaussian()), Grid::new([-1.2, 0.3], [0.05, 0.05], [80, 80]));
-    compare("halves 3D", &Sparse::new(2).with_values(Values::Halves), Grid::new([5.5, -7.5, 1.5], [0.05, 0.05, 0.0], [64, 64, 1]));
+    compare(
+        "gaussian 2D",
+        &Sparse::new(1).with_kernel(Kernel::gaussian()),
+        Grid::new([-1.2, 0.3], [0.05, 0.05], [80, 80]),
+    );
+    compare(
+        "halves 3D",
+        &Sparse::new(2).with_values(Values::Halves),
+        Grid::new([5.5, -7.5, 1.5], [0.05, 0.05, 0.0], [64, 64, 1]),
+    );
     let stretched = Kernel::cubic()
         .anisotropic([[0.5, 0.2, 0.0, 0.0], [0.0, 1.5, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
         .unwrap();
-    compare("anisotropic 2D", &Sparse::new(4).with_kernel(stretched.clone()), Grid::new([-1.0, -1.0], [0.04, 0.04], [90, 90]));
-    compare("anisotropic 3D slice", &Sparse::new(4).with_kernel(stretched), Grid::new([-1.0, -1.0, 0.3], [0.04, 0.04, 0.0], [70, 70, 1]));
+    compare(
+        "anisotropic 2D",
+        &Sparse::new(4).with_kernel(stretched.clone()),
+        Grid::new([-1.0, -1.0], [0.04, 0.04], [90, 90]),
+    );
+    compare(
+        "anisotropic 3D slice",
+        &Sparse::new(4).with_kernel(stretched),
+        Grid::new([-1.0, -1.0, 0.3], [0.04, 0.04, 0.0], [70, 70, 1]),
+    );
     let ring = Kernel::radial_profile(0.6, |d| (d * 12.0).cos() * (1.0 - d / 0.6)).unwrap();
     compare("custom ring kernel", &Sparse::new(5).with_kernel(ring), Grid::new([0.1, 0.1], [0.03, 0.03], [100, 100]));
     // Far away (beyond the f32 pixel-resolution limit) it falls back to point evaluation.
@@ -131,7 +147,9 @@ fn statistics_match_the_normalisation() {
         ((s2 / count as f64).sqrt(), out as f64 / count as f64)
     }
     let n = Sparse::new(0);
-    for (d, (std, tail)) in [(1, std_and_tail::<1>(&n, 200_000)), (2, std_and_tail::<2>(&n, 200_000)), (3, std_and_tail::<3>(&n, 50_000))] {
+    for (d, (std, tail)) in
+        [(1, std_and_tail::<1>(&n, 200_000)), (2, std_and_tail::<2>(&n, 200_000)), (3, std_and_tail::<3>(&n, 50_000))]
+    {
         assert!((std - 0.25).abs() < 0.01, "{d}D std {std}");
         assert!(tail < 2e-3, "{d}D share beyond ±1: {tail}");
     }

@@ -6,7 +6,10 @@
 
 use noiselab::grid::fill_grid_at;
 use noiselab::hash::SplitMix64;
-use noiselab::{Accuracy, Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, NoiseGradient, SimdLevel, Sparse, Value, Worley};
+use noiselab::{
+    Accuracy, Classic, Grid, Improved, ImprovedVariant, Modified, ModifiedHash, ModifiedTexture, Noise, NoiseGradient,
+    SimdLevel, Sparse, Value, Worley,
+};
 
 const PERIODS: [[u32; 4]; 3] = [[3, 5, 7, 2], [1, 1, 1, 1], [300, 257, 11, 4]];
 
@@ -21,7 +24,11 @@ fn check_values<N: Noise<D>, const D: usize>(name: &str, noise: &N, period: [u32
         for k in 0..D {
             let mut q = p;
             q[k] += period[k] as f64;
-            assert_eq!(noise.get(p).to_bits(), noise.get(q).to_bits(), "{name} {D}D period {period:?} axis {k} at {p:?}");
+            assert_eq!(
+                noise.get(p).to_bits(),
+                noise.get(q).to_bits(),
+                "{name} {D}D period {period:?} axis {k} at {p:?}"
+            );
             let (pf, qf) = (p.map(|c| c as f32), q.map(|c| c as f32));
             assert_eq!(noise.get_f32(pf).to_bits(), noise.get_f32(qf).to_bits(), "{name} {D}D f32 axis {k} at {p:?}");
         }

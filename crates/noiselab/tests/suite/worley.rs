@@ -68,7 +68,9 @@ where
 
 #[test]
 fn ring_search_equals_brute_force() {
-    for metric in [Metric::Euclidean, Metric::EuclideanSquared, Metric::Manhattan, Metric::Chebyshev, Metric::Minkowski(3.0)] {
+    for metric in
+        [Metric::Euclidean, Metric::EuclideanSquared, Metric::Manhattan, Metric::Chebyshev, Metric::Minkowski(3.0)]
+    {
         check::<1>(metric, 1.0, 2000);
         check::<2>(metric, 1.0, 2000);
         check::<3>(metric, 1.0, 600);
@@ -151,7 +153,8 @@ where
 fn grid_fill_equals_the_point_path() {
     use noiselab::Grid;
     let outputs = [CellOutput::F1, CellOutput::F2, CellOutput::F4, CellOutput::F2MinusF1, CellOutput::CellValue];
-    let metrics = [Metric::Euclidean, Metric::EuclideanSquared, Metric::Manhattan, Metric::Chebyshev, Metric::Minkowski(3.0)];
+    let metrics =
+        [Metric::Euclidean, Metric::EuclideanSquared, Metric::Manhattan, Metric::Chebyshev, Metric::Minkowski(3.0)];
     for (i, (&output, &metric)) in outputs.iter().cycle().zip(metrics.iter()).enumerate().take(8) {
         let w = Worley::new(i as u32).with_metric(metric).unwrap().with_output(output);
         for step in [1.0 / 32.0, 0.13, 0.9, 2.5, -0.07] {

@@ -109,7 +109,11 @@ pub struct Kernel {
 
 impl fmt::Debug for Kernel {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Kernel").field("name", &self.name).field("radius", &self.radius).field("map", &self.map).finish()
+        f.debug_struct("Kernel")
+            .field("name", &self.name)
+            .field("radius", &self.radius)
+            .field("map", &self.map)
+            .finish()
     }
 }
 
@@ -187,7 +191,12 @@ impl Kernel {
         Kernel::build(self.name, self.profile, self.radius, Some(a))
     }
 
-    fn build(name: &'static str, profile: Profile, radius: f64, map: Option<[[f64; 4]; 4]>) -> Result<Kernel, KernelError> {
+    fn build(
+        name: &'static str,
+        profile: Profile,
+        radius: f64,
+        map: Option<[[f64; 4]; 4]>,
+    ) -> Result<Kernel, KernelError> {
         let mut support = [radius; 4];
         let mut scale = [1.0; 4];
         if let Some(a) = map {
@@ -245,7 +254,12 @@ impl Kernel {
 
 /// ∫ w(|y|)² dy over D-space, by Simpson's rule on the radius.
 fn radial_energy(kernel: &Kernel, d: usize) -> f64 {
-    let sphere = [2.0, 2.0 * core::f64::consts::PI, 4.0 * core::f64::consts::PI, 2.0 * core::f64::consts::PI * core::f64::consts::PI][d - 1];
+    let sphere = [
+        2.0,
+        2.0 * core::f64::consts::PI,
+        4.0 * core::f64::consts::PI,
+        2.0 * core::f64::consts::PI * core::f64::consts::PI,
+    ][d - 1];
     let steps = 4000;
     let h = kernel.radius / steps as f64;
     let f = |k: usize| {
@@ -463,7 +477,11 @@ impl Sparse {
         // when 2R is a whole number, as for the cubic kernel).
         let span = 2.0 * support;
         let whole = libm::floor(span);
-        if span == whole { whole as usize + 1 } else { whole as usize + 2 }
+        if span == whole {
+            whole as usize + 1
+        } else {
+            whole as usize + 2
+        }
     }
 
     /// The impulses of one cell in `D` dimensions: calls `f(offset, value)`
@@ -612,7 +630,8 @@ mod tests {
         let k = Kernel::cubic();
         let r: f64 = 0.5;
         let beta = |a: f64, b: f64| libm::exp(libm::lgamma(a) + libm::lgamma(b) - libm::lgamma(a + b));
-        let sphere = [2.0, 2.0 * core::f64::consts::PI, 4.0 * core::f64::consts::PI, 2.0 * core::f64::consts::PI.powi(2)];
+        let sphere =
+            [2.0, 2.0 * core::f64::consts::PI, 4.0 * core::f64::consts::PI, 2.0 * core::f64::consts::PI.powi(2)];
         for d in 1..=4 {
             let exact = sphere[d - 1] * r.powi(d as i32) / 2.0 * beta(d as f64 / 2.0, 7.0);
             assert!((k.energy[d - 1] / exact - 1.0).abs() < 1e-6, "D = {d}: {} vs {exact}", k.energy[d - 1]);

@@ -91,7 +91,8 @@ impl Sparse {
         let (x_span, y_span) = (span(0, w), span(1, h));
         // NaN fails `near` too, so NaN windows are evaluated point by point.
         let near = |c: f64| c.abs() < SPLAT_LIMIT;
-        let far = ![x_span.0, x_span.1, y_span.0, y_span.1].into_iter().all(near) || !(2..D).all(|d| near(grid.origin[d]));
+        let far =
+            ![x_span.0, x_span.1, y_span.0, y_span.1].into_iter().all(near) || !(2..D).all(|d| near(grid.origin[d]));
         let cells = (x_span.1 - x_span.0 + 2.0) * (y_span.1 - y_span.0 + 2.0);
         if far || cells > (w * h) as f64 {
             return Noise::<D>::fill_grid(self, grid, out).map_err(SplatError::Grid);

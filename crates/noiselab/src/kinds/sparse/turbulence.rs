@@ -55,7 +55,12 @@ impl SparseTurbulence {
     }
 
     /// [`SparseTurbulence::splat_grid`], each octave splatted into `octave`.
-    fn sum_octaves<const D: usize>(&self, grid: &Grid<D>, out: &mut [f32], octave: &mut [f32]) -> Result<(), super::SplatError>
+    fn sum_octaves<const D: usize>(
+        &self,
+        grid: &Grid<D>,
+        out: &mut [f32],
+        octave: &mut [f32],
+    ) -> Result<(), super::SplatError>
     where
         Sparse: Noise<D>,
     {
