@@ -113,6 +113,26 @@ fn fbm6_2d_64_tiles_of_32x32((tiles, mut out): (Vec<Grid<2>>, Vec<f32>)) -> Vec<
 }
 
 #[library_benchmark]
+#[bench::improved_fast(setup = tiles2)]
+fn improved_2d_fast_64_tiles_of_32x32((tiles, mut out): (Vec<Grid<2>>, Vec<f32>)) -> Vec<f32> {
+    let noise = Improved::new(1337);
+    for (grid, tile) in tiles.iter().zip(out.chunks_exact_mut(32 * 32)) {
+        Noise::<2>::fill_grid_fast(black_box(&noise), grid, tile).unwrap();
+    }
+    out
+}
+
+#[library_benchmark]
+#[bench::fbm6_fast(setup = tiles2)]
+fn fbm6_2d_fast_64_tiles_of_32x32((tiles, mut out): (Vec<Grid<2>>, Vec<f32>)) -> Vec<f32> {
+    let fbm = Fractal::new(|o| Improved::new(o.seed), 1337, 6, FractalMode::Fbm).unwrap();
+    for (grid, tile) in tiles.iter().zip(out.chunks_exact_mut(32 * 32)) {
+        Noise::<2>::fill_grid_fast(black_box(&fbm), grid, tile).unwrap();
+    }
+    out
+}
+
+#[library_benchmark]
 #[bench::improved(setup = grid3)]
 fn improved_3d_32x32x32((grid, mut out): (Grid<3>, Vec<f32>)) -> Vec<f32> {
     Noise::<3>::fill_grid(black_box(&Improved::new(1337)), &grid, &mut out).unwrap();
@@ -152,6 +172,8 @@ library_benchmark_group!(
         fbm6_2d_fast_256x256,
         improved_2d_64_tiles_of_32x32,
         fbm6_2d_64_tiles_of_32x32,
+        improved_2d_fast_64_tiles_of_32x32,
+        fbm6_2d_fast_64_tiles_of_32x32,
         improved_3d_32x32x32,
         simplex_3d_32x32x32,
         improved_3d_32k_random_points,
