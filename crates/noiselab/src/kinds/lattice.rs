@@ -2202,7 +2202,13 @@ fn fast_small_tile<B: BatchLanes>(
     if long_runs {
         return tall.then_some(true);
     }
-    let near = axis0.iter().all(|a| chunk_cells(&a.lane[..w]).reach(w) == Reach::Near);
+    // A loop, not `Iterator::all`: LLVM left `all` out of line, outside
+    // the instruction-set clone (482 instructions of a fast fBm-6 32² tile,
+    // callgrind).
+    let mut near = true;
+    for a in axis0 {
+        near &= chunk_cells(&a.lane[..w]).reach(w) == Reach::Near;
+    }
     Some(tall && near && points > w)
 }
 
