@@ -364,12 +364,21 @@ impl<const D: usize> Axes<D> {
     /// Every coordinate multiplied by `factor` in `f32` (`c * factor` per
     /// coordinate, as a point evaluation of `p * factor` rounds it).
     pub fn scaled(&self, factor: f32) -> Self {
-        let mut coords = crate::scratch::take(self.coords.len());
-        coords.truncate(self.coords.len());
-        for (to, &c) in coords.iter_mut().zip(&self.coords) {
-            *to = c * factor;
-        }
+        self.scaled_in(factor, crate::scratch::take(self.coords.len()))
+    }
+
+    /// [`Axes::scaled`] into `coords`, a buffer its caller keeps (see
+    /// [`Axes::into_coords`]).
+    pub(crate) fn scaled_in(&self, factor: f32, mut coords: Vec<f32>) -> Self {
+        coords.clear();
+        coords.extend(self.coords.iter().map(|&c| c * factor));
         Axes { coords, ends: self.ends }
+    }
+
+    /// The buffer, for its owner to keep (where [`Axes::recycle`] gives
+    /// it to the scratch pool).
+    pub(crate) fn into_coords(self) -> Vec<f32> {
+        self.coords
     }
 
     /// The axes of columns `columns` (of axis 0) in every row, in a

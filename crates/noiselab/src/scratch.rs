@@ -13,10 +13,11 @@
 
 use alloc::vec::Vec;
 
-/// Most buffers a thread keeps: a grid fill holds its axes and a cellular
-/// fill four tables at once (a lattice fill keeps its own tables); a
-/// fractal adds its octave values and each octave's axes (six octaves:
-/// eight). Deeper nesting allocates past these.
+/// Most buffers a thread keeps: a cellular fill holds four tables at once
+/// (a lattice fill keeps its own tables, and a grid fill its axes); a
+/// fractal adds its octave values and, over rows of several strips, each
+/// octave's strip axes (six octaves: seven; its whole axes it keeps
+/// itself). Deeper nesting allocates past these.
 #[cfg(feature = "std")]
 const KEPT: usize = 16;
 
